@@ -1,0 +1,29 @@
+// Basic types shared by every module of the core.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <vector>
+
+namespace tacs {
+
+/// A rigid-body pose or transform. Naming convention: T_a_b maps points from frame b to frame a.
+using Pose3 = Eigen::Isometry3d;
+
+/// A scan or map cloud. x y z in metres, intensity in sensor units.
+using PointCloud = pcl::PointCloud<pcl::PointXYZI>;
+
+/// A pose with its time stamp in seconds.
+struct StampedPose {
+  double stamp = 0.0;
+  Pose3 pose = Pose3::Identity();
+};
+
+using Trajectory = std::vector<StampedPose>;
+
+/// Builds a pose from translation (metres) and roll, pitch, yaw (radians, applied as Rz*Ry*Rx).
+Pose3 poseFromXyzRpy(double x, double y, double z, double roll, double pitch, double yaw);
+
+}  // namespace tacs

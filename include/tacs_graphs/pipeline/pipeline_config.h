@@ -1,0 +1,32 @@
+// The whole configuration of a run: one section per module, as in config/*.yaml. The nodes read
+// it from the ROS parameter server (namespace /tacs by default), the offline tools from the file.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tacs_graphs/common/config.h"
+#include "tacs_graphs/common/frames.h"
+
+namespace tacs {
+
+struct PipelineConfig {
+  FramesConfig frames;
+
+  template <class V>
+  void visit(V& v) {
+    v("frames", frames);
+  }
+  void validate() const;
+};
+
+/// A loaded configuration and the keys in it that no field claimed (likely typos).
+struct LoadedPipelineConfig {
+  PipelineConfig config;
+  std::vector<std::string> unknown_keys;
+};
+
+/// Loads and validates a YAML configuration file. Throws ConfigError naming the file and key.
+LoadedPipelineConfig loadPipelineConfig(const std::string& yaml_path);
+
+}  // namespace tacs

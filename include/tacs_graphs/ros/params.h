@@ -1,0 +1,25 @@
+// The bridge from the ROS parameter server to the core's Config structs.
+//
+// Launch files load a YAML file from config/ into a namespace (default /tacs); every node reads
+// the whole PipelineConfig from there, so nodes and offline tools share one file and one struct.
+#pragma once
+
+#include <ros/node_handle.h>
+#include <xmlrpcpp/XmlRpcValue.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tacs_graphs/pipeline/pipeline_config.h"
+
+namespace tacs {
+
+/// Converts an XmlRpc value (as returned by NodeHandle::getParam) to JSON.
+nlohmann::json xmlRpcToJson(XmlRpc::XmlRpcValue& value);
+
+/// Reads the PipelineConfig from the parameter namespace `ns` (absent keys keep defaults),
+/// validates it, warns once per unknown key and logs the effective values at debug level.
+/// Throws ConfigError naming the parameter; nodes catch it, log it and shut down.
+PipelineConfig loadPipelineConfigFromRos(const ros::NodeHandle& nh, const std::string& ns);
+
+}  // namespace tacs

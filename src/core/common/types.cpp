@@ -1,0 +1,15 @@
+#include "tacs_graphs/common/types.h"
+
+namespace tacs {
+
+Pose3 poseFromXyzRpy(double x, double y, double z, double roll, double pitch, double yaw) {
+  Pose3 pose = Pose3::Identity();
+  pose.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                   Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                   Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                      .toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(x, y, z);
+  return pose;
+}
+
+}  // namespace tacs
