@@ -1,0 +1,22 @@
+// Logs each distinct reason for dropping a message once, then counts repeats silently: a node
+// fed a stream of bad messages keeps a readable log and keeps running.
+#pragma once
+
+#include <map>
+#include <string>
+
+namespace tacs {
+
+class WarnOnce {
+ public:
+  /// Logs "<what>: <reason>" on the first occurrence of `reason`; counts every occurrence.
+  void warn(const std::string& what, const std::string& reason);
+  size_t count(const std::string& reason) const;
+  size_t total() const { return total_; }
+
+ private:
+  std::map<std::string, size_t> counts_;
+  size_t total_ = 0;
+};
+
+}  // namespace tacs
