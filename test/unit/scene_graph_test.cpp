@@ -1,9 +1,9 @@
+#include "tacs_graphs/scene_graph/scene_graph.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <fstream>
-
-#include "tacs_graphs/scene_graph/scene_graph.h"
 
 namespace tacs {
 namespace {

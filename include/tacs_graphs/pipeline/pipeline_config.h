@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "tacs_graphs/backend/factor_graph.h"
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/frames.h"
 
@@ -12,10 +13,12 @@ namespace tacs {
 
 struct PipelineConfig {
   FramesConfig frames;
+  BackendConfig backend;
 
   template <class V>
   void visit(V& v) {
     v("frames", frames);
+    v("backend", backend);
   }
   void validate() const;
 };

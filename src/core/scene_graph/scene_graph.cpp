@@ -65,7 +65,8 @@ const json& array(const json& j, const char* key, const std::string& path) {
 std::vector<uint32_t> indices(const json& j, const std::string& path) {
   if (!j.is_array()) throw std::runtime_error(path + ": expected a list");
   std::vector<uint32_t> out;
-  for (size_t i = 0; i < j.size(); ++i) out.push_back(index(j[i], path + "[" + std::to_string(i) + "]"));
+  for (size_t i = 0; i < j.size(); ++i)
+    out.push_back(index(j[i], path + "[" + std::to_string(i) + "]"));
   return out;
 }
 
@@ -201,8 +202,8 @@ SceneGraph SceneGraph::fromJson(const json& j) {
     l.from = index(field(loops[i], "from", p), p + ".from");
     l.to = index(field(loops[i], "to", p), p + ".to");
     const json& rel = field(loops[i], "relative_pose", p);
-    l.position = vector<3>(field(rel, "position", p + ".relative_pose"),
-                           p + ".relative_pose.position");
+    l.position =
+        vector<3>(field(rel, "position", p + ".relative_pose"), p + ".relative_pose.position");
     l.orientation = quaternion(field(rel, "orientation", p + ".relative_pose"),
                                p + ".relative_pose.orientation");
     l.score = number(field(loops[i], "score", p), p + ".score");

@@ -1,0 +1,135 @@
+// The hierarchical factor graph (paper Sec. III, Fig. 1): keyframe poses, wall planes and room
+// centres as Ceres parameter blocks; odometry, loop, keyframe-wall, room and wall-to-wall factors.
+// The problem is rebuilt from the stored measurements at every optimisation, so walls and rooms can
+// be merged or removed between optimisations without bookkeeping inside Ceres.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "tacs_graphs/common/types.h"
+
+namespace tacs {
+
+struct BackendConfig {
+  double wall_sigma_normal = 0.05;       // keyframe-wall factor, normal components [-]
+  double wall_sigma_d = 0.05;            // keyframe-wall factor, plane distance [m]
+  double wall_huber = 1.0;               // robust loss on whitened keyframe-wall residuals [-]
+  double loop_huber = 1.0;               // robust loss on whitened loop residuals [-]
+  double room_sigma = 0.1;               // room/corridor centre midway between facing walls [m]
+  double corridor_anchor_sigma = 1.0;    // corridor centre along its walls [m]
+  double wall_merge_sigma_theta = 0.02;  // wall-to-wall edge, angle [rad]
+  double wall_merge_sigma_d = 0.05;      // wall-to-wall edge, distance [m]
+  int max_iterations = 20;               // Levenberg-Marquardt iterations per optimisation
+  int num_threads = 1;                   // Ceres threads (the other core runs the front end)
+  int optimize_every_keyframes = 1;  // optimise after this many new keyframes (and on each loop)
+
+  template <class V>
+  void visit(V& v) {
+    v("wall_sigma_normal", wall_sigma_normal);
+    v("wall_sigma_d", wall_sigma_d);
+    v("wall_huber", wall_huber);
+    v("loop_huber", loop_huber);
+    v("room_sigma", room_sigma);
+    v("corridor_anchor_sigma", corridor_anchor_sigma);
+    v("wall_merge_sigma_theta", wall_merge_sigma_theta);
+    v("wall_merge_sigma_d", wall_merge_sigma_d);
+    v("max_iterations", max_iterations);
+    v("num_threads", num_threads);
+    v("optimize_every_keyframes", optimize_every_keyframes);
+  }
+  void validate() const;
+};
+
+struct OptimizationReport {
+  bool usable = false;  // Ceres returned a usable solution
+  int iterations = 0;
+  double initial_cost = 0.0;
+  double final_cost = 0.0;
+  double time_ms = 0.0;
+  size_t residual_blocks = 0;
+};
+
+/// A vertical wall plane n . p + d = 0, n = (cos theta, sin theta, 0).
+struct WallPlane {
+  double theta = 0.0;
+  double d = 0.0;
+  Eigen::Vector3d normal() const { return {std::cos(theta), std::sin(theta), 0.0}; }
+  /// From any plane: the normal is projected onto the horizontal plane (walls are vertical).
+  static WallPlane fromNormalD(const Eigen::Vector3d& normal, double d);
+};
+
+class FactorGraph {
+ public:
+  using Matrix6d = Eigen::Matrix<double, 6, 6>;
+  explicit FactorGraph(const BackendConfig& config);
+
+  /// The first keyframe added anchors the map frame (held constant).
+  void addKeyframe(uint32_t id, const Pose3& T_map_base);
+  bool hasKeyframe(uint32_t id) const { return keyframes_.count(id) > 0; }
+  /// Odometry (robust = false) or loop closure (robust = true) edge: T_from_to measured.
+  void addRelativePose(uint32_t from, uint32_t to, const Pose3& T_from_to,
+                       const Matrix6d& information, bool robust);
+
+  void addWall(uint32_t id, const WallPlane& plane);
+  bool hasWall(uint32_t id) const { return walls_.count(id) > 0; }
+  /// The wall seen from a keyframe as (n_base, d_base) in the base frame.
+  void addWallObservation(uint32_t keyframe, uint32_t wall, const Eigen::Vector3d& n_base,
+                          double d_base);
+  /// Removes wall `removed`; its observations and edges move to `kept`.
+  void mergeWalls(uint32_t kept, uint32_t removed);
+  /// Wall-to-wall edge of room merging (paper eq. 4).
+  void addWallToWall(uint32_t wall_a, uint32_t wall_b);
+
+  /// Adds or replaces a room: facing wall pairs (two for a room, one for a corridor) and, for a
+  /// corridor, the free-space centre that anchors it along its walls.
+  void setRoom(uint32_t id, const Eigen::Vector2d& center,
+               const std::vector<std::pair<uint32_t, uint32_t>>& wall_pairs,
+               const std::optional<Eigen::Vector2d>& corridor_anchor);
+  void removeRoom(uint32_t id);
+
+  OptimizationReport optimize();
+
+  Pose3 keyframePose(uint32_t id) const;
+  WallPlane wall(uint32_t id) const;
+  Eigen::Vector2d roomCenter(uint32_t id) const;
+  size_t keyframeCount() const { return keyframes_.size(); }
+  size_t wallCount() const { return walls_.size(); }
+  size_t roomCount() const { return rooms_.size(); }
+
+ private:
+  struct KeyframeState {
+    std::array<double, 3> t;
+    std::array<double, 4> q;  // x y z w
+  };
+  struct RelativePoseEdge {
+    uint32_t from, to;
+    Pose3 T_from_to;
+    Matrix6d sqrt_information;
+    bool robust;
+  };
+  struct WallObservation {
+    uint32_t keyframe, wall;
+    Eigen::Vector3d n_base;
+    double d_base;
+  };
+  struct Room {
+    std::array<double, 2> center;
+    std::vector<std::pair<uint32_t, uint32_t>> wall_pairs;
+    std::optional<Eigen::Vector2d> corridor_anchor;
+  };
+
+  BackendConfig config_;
+  std::map<uint32_t, KeyframeState> keyframes_;
+  std::map<uint32_t, std::array<double, 2>> walls_;
+  std::map<uint32_t, Room> rooms_;
+  std::vector<RelativePoseEdge> pose_edges_;
+  std::vector<WallObservation> wall_observations_;
+  std::vector<std::pair<uint32_t, uint32_t>> wall_to_wall_;
+  std::optional<uint32_t> anchor_keyframe_;
+};
+
+}  // namespace tacs

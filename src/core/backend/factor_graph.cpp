@@ -1,0 +1,203 @@
+#include "tacs_graphs/backend/factor_graph.h"
+
+#include <ceres/ceres.h>
+
+#include <stdexcept>
+
+#include "tacs_graphs/backend/factors.h"
+#include "tacs_graphs/common/config.h"
+#include "tacs_graphs/common/timing.h"
+
+namespace tacs {
+
+void BackendConfig::validate() const {
+  for (const auto& [name, value] : {std::pair{"wall_sigma_normal", wall_sigma_normal},
+                                    {"wall_sigma_d", wall_sigma_d},
+                                    {"wall_huber", wall_huber},
+                                    {"loop_huber", loop_huber},
+                                    {"room_sigma", room_sigma},
+                                    {"corridor_anchor_sigma", corridor_anchor_sigma},
+                                    {"wall_merge_sigma_theta", wall_merge_sigma_theta},
+                                    {"wall_merge_sigma_d", wall_merge_sigma_d}}) {
+    requireConfig(value > 0, std::string("backend.") + name, "must be > 0");
+  }
+  requireConfig(max_iterations >= 1, "backend.max_iterations", "must be >= 1");
+  requireConfig(num_threads >= 1, "backend.num_threads", "must be >= 1");
+  requireConfig(optimize_every_keyframes >= 1, "backend.optimize_every_keyframes", "must be >= 1");
+}
+
+WallPlane WallPlane::fromNormalD(const Eigen::Vector3d& normal, double d) {
+  const Eigen::Vector2d horizontal = normal.head<2>();
+  const double norm = horizontal.norm();
+  if (norm < 1e-6) throw std::invalid_argument("WallPlane: a horizontal plane is not a wall");
+  // n . p + d = 0 with a unit 3D normal; rescale so the horizontal normal is unit.
+  return {std::atan2(horizontal.y(), horizontal.x()), d / norm};
+}
+
+FactorGraph::FactorGraph(const BackendConfig& config) : config_(config) { config_.validate(); }
+
+void FactorGraph::addKeyframe(uint32_t id, const Pose3& T_map_base) {
+  const Eigen::Quaterniond q(T_map_base.rotation());
+  const Eigen::Vector3d t = T_map_base.translation();
+  keyframes_[id] = {{t.x(), t.y(), t.z()}, {q.x(), q.y(), q.z(), q.w()}};
+  if (!anchor_keyframe_) anchor_keyframe_ = id;
+}
+
+void FactorGraph::addRelativePose(uint32_t from, uint32_t to, const Pose3& T_from_to,
+                                  const Matrix6d& information, bool robust) {
+  if (!hasKeyframe(from) || !hasKeyframe(to)) {
+    throw std::invalid_argument("FactorGraph: relative pose between unknown keyframes");
+  }
+  const Eigen::LLT<Matrix6d> llt(information);
+  if (llt.info() != Eigen::Success) {
+    throw std::invalid_argument("FactorGraph: information matrix is not positive definite");
+  }
+  pose_edges_.push_back({from, to, T_from_to, llt.matrixU(), robust});
+}
+
+void FactorGraph::addWall(uint32_t id, const WallPlane& plane) {
+  walls_[id] = {plane.theta, plane.d};
+}
+
+void FactorGraph::addWallObservation(uint32_t keyframe, uint32_t wall,
+                                     const Eigen::Vector3d& n_base, double d_base) {
+  if (!hasKeyframe(keyframe) || !hasWall(wall)) {
+    throw std::invalid_argument("FactorGraph: wall observation of an unknown keyframe or wall");
+  }
+  wall_observations_.push_back({keyframe, wall, n_base, d_base});
+}
+
+void FactorGraph::mergeWalls(uint32_t kept, uint32_t removed) {
+  if (kept == removed || !hasWall(kept) || !hasWall(removed)) return;
+  for (auto& o : wall_observations_) {
+    if (o.wall == removed) o.wall = kept;
+  }
+  for (auto& [a, b] : wall_to_wall_) {
+    if (a == removed) a = kept;
+    if (b == removed) b = kept;
+  }
+  for (auto& [id, room] : rooms_) {
+    for (auto& [a, b] : room.wall_pairs) {
+      if (a == removed) a = kept;
+      if (b == removed) b = kept;
+    }
+  }
+  walls_.erase(removed);
+}
+
+void FactorGraph::addWallToWall(uint32_t wall_a, uint32_t wall_b) {
+  if (!hasWall(wall_a) || !hasWall(wall_b)) {
+    throw std::invalid_argument("FactorGraph: wall-to-wall edge between unknown walls");
+  }
+  wall_to_wall_.emplace_back(wall_a, wall_b);
+}
+
+void FactorGraph::setRoom(uint32_t id, const Eigen::Vector2d& center,
+                          const std::vector<std::pair<uint32_t, uint32_t>>& wall_pairs,
+                          const std::optional<Eigen::Vector2d>& corridor_anchor) {
+  for (const auto& [a, b] : wall_pairs) {
+    if (!hasWall(a) || !hasWall(b))
+      throw std::invalid_argument("FactorGraph: room on unknown wall");
+  }
+  rooms_[id] = {{center.x(), center.y()}, wall_pairs, corridor_anchor};
+}
+
+void FactorGraph::removeRoom(uint32_t id) { rooms_.erase(id); }
+
+OptimizationReport FactorGraph::optimize() {
+  OptimizationReport report;
+  Stopwatch watch;
+  ceres::Problem::Options problem_options;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  ceres::EigenQuaternionManifold quaternion_manifold;
+
+  for (auto& [id, kf] : keyframes_) {
+    problem.AddParameterBlock(kf.t.data(), 3);
+    problem.AddParameterBlock(kf.q.data(), 4, &quaternion_manifold);
+  }
+  if (anchor_keyframe_) {
+    auto& anchor = keyframes_.at(*anchor_keyframe_);
+    problem.SetParameterBlockConstant(anchor.t.data());
+    problem.SetParameterBlockConstant(anchor.q.data());
+  }
+  for (const auto& e : pose_edges_) {
+    auto& a = keyframes_.at(e.from);
+    auto& b = keyframes_.at(e.to);
+    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseFactor, 6, 3, 4, 3, 4>(
+        new RelativePoseFactor(e.T_from_to, e.sqrt_information));
+    ceres::LossFunction* loss = e.robust ? new ceres::HuberLoss(config_.loop_huber) : nullptr;
+    problem.AddResidualBlock(cost, loss, a.t.data(), a.q.data(), b.t.data(), b.q.data());
+  }
+  for (const auto& o : wall_observations_) {
+    auto& kf = keyframes_.at(o.keyframe);
+    auto* cost = new ceres::AutoDiffCostFunction<WallObservationFactor, 4, 3, 4, 2>(
+        new WallObservationFactor(o.n_base, o.d_base, config_.wall_sigma_normal,
+                                  config_.wall_sigma_d));
+    problem.AddResidualBlock(cost, new ceres::HuberLoss(config_.wall_huber), kf.t.data(),
+                             kf.q.data(), walls_.at(o.wall).data());
+  }
+  for (auto& [id, room] : rooms_) {
+    for (const auto& [a, b] : room.wall_pairs) {
+      if (a == b) continue;  // both sides merged into one wall: no constraint left
+      auto* cost = new ceres::AutoDiffCostFunction<RoomPairFactor, 1, 2, 2, 2>(
+          new RoomPairFactor(config_.room_sigma));
+      problem.AddResidualBlock(cost, nullptr, room.center.data(), walls_.at(a).data(),
+                               walls_.at(b).data());
+    }
+    if (room.corridor_anchor && !room.wall_pairs.empty()) {
+      auto* cost = new ceres::AutoDiffCostFunction<CorridorAnchorFactor, 1, 2, 2>(
+          new CorridorAnchorFactor(*room.corridor_anchor, config_.corridor_anchor_sigma));
+      problem.AddResidualBlock(cost, nullptr, room.center.data(),
+                               walls_.at(room.wall_pairs.front().first).data());
+    }
+    if (room.wall_pairs.empty()) problem.AddParameterBlock(room.center.data(), 2);
+  }
+  for (const auto& [a, b] : wall_to_wall_) {
+    if (a == b) continue;
+    auto* cost = new ceres::AutoDiffCostFunction<WallToWallFactor, 2, 2, 2>(
+        new WallToWallFactor(config_.wall_merge_sigma_theta, config_.wall_merge_sigma_d));
+    problem.AddResidualBlock(cost, nullptr, walls_.at(a).data(), walls_.at(b).data());
+  }
+  report.residual_blocks = static_cast<size_t>(problem.NumResidualBlocks());
+  if (report.residual_blocks == 0) {
+    report.usable = true;
+    report.time_ms = watch.elapsedMs();
+    return report;
+  }
+
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  options.max_num_iterations = config_.max_iterations;
+  options.num_threads = config_.num_threads;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  report.usable = summary.IsSolutionUsable();
+  report.iterations = static_cast<int>(summary.iterations.size());
+  report.initial_cost = summary.initial_cost;
+  report.final_cost = summary.final_cost;
+  report.time_ms = watch.elapsedMs();
+  return report;
+}
+
+Pose3 FactorGraph::keyframePose(uint32_t id) const {
+  const auto& kf = keyframes_.at(id);
+  Pose3 pose = Pose3::Identity();
+  pose.linear() =
+      Eigen::Quaterniond(kf.q[3], kf.q[0], kf.q[1], kf.q[2]).normalized().toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(kf.t[0], kf.t[1], kf.t[2]);
+  return pose;
+}
+
+WallPlane FactorGraph::wall(uint32_t id) const {
+  const auto& w = walls_.at(id);
+  return {w[0], w[1]};
+}
+
+Eigen::Vector2d FactorGraph::roomCenter(uint32_t id) const {
+  const auto& r = rooms_.at(id);
+  return {r.center[0], r.center[1]};
+}
+
+}  // namespace tacs

@@ -1,0 +1,173 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "tacs_graphs/backend/factor_graph.h"
+#include "tacs_graphs/common/config.h"
+
+namespace tacs {
+namespace {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+// A robot driving around a 10 x 6 m rectangle, one keyframe per metre, heading along the path.
+std::vector<Pose3> rectangleLoop() {
+  std::vector<Pose3> poses;
+  const std::vector<Eigen::Vector2d> corners = {{0, 0}, {10, 0}, {10, 6}, {0, 6}, {0, 0}};
+  for (size_t s = 0; s + 1 < corners.size(); ++s) {
+    const Eigen::Vector2d a = corners[s], b = corners[s + 1];
+    const int steps = static_cast<int>((b - a).norm());
+    const double yaw = std::atan2((b - a).y(), (b - a).x());
+    for (int i = 0; i < steps; ++i) {
+      const Eigen::Vector2d p = a + (b - a) * (double(i) / steps);
+      poses.push_back(poseFromXyzRpy(p.x(), p.y(), 0.0, 0.0, 0.0, yaw));
+    }
+  }
+  return poses;
+}
+
+// Odometry with a small yaw bias per step: the classic drift a loop or walls must remove.
+std::vector<Pose3> driftingOdometry(const std::vector<Pose3>& truth) {
+  std::vector<Pose3> odom = {truth[0]};
+  const Pose3 bias = poseFromXyzRpy(0.02, 0.0, 0.0, 0.0, 0.0, 0.01);
+  for (size_t i = 1; i < truth.size(); ++i) {
+    odom.push_back(odom.back() * (truth[i - 1].inverse() * truth[i]) * bias);
+  }
+  return odom;
+}
+
+double maxError(const FactorGraph& g, const std::vector<Pose3>& truth) {
+  double worst = 0;
+  for (size_t i = 0; i < truth.size(); ++i) {
+    worst = std::max(worst, (g.keyframePose(i).translation() - truth[i].translation()).norm());
+  }
+  return worst;
+}
+
+void addOdometry(FactorGraph* g, const std::vector<Pose3>& odom) {
+  for (size_t i = 0; i < odom.size(); ++i) {
+    g->addKeyframe(i, odom[i]);
+    if (i > 0) {
+      g->addRelativePose(i - 1, i, odom[i - 1].inverse() * odom[i], Matrix6d::Identity() * 100,
+                         false);
+    }
+  }
+}
+
+TEST(FactorGraph, LoopClosureRemovesDrift) {
+  const auto truth = rectangleLoop();
+  const auto odom = driftingOdometry(truth);
+  FactorGraph g{BackendConfig()};
+  addOdometry(&g, odom);
+  const double before = maxError(g, truth);
+  // The robot is back at the start: the loop edge measures the true relative pose.
+  const size_t last = truth.size() - 1;
+  g.addRelativePose(0, last, truth[0].inverse() * truth[last], Matrix6d::Identity() * 1000, true);
+  const OptimizationReport report = g.optimize();
+  EXPECT_TRUE(report.usable);
+  EXPECT_LT(report.final_cost, report.initial_cost);
+  const double after = maxError(g, truth);
+  EXPECT_GT(before, 1.0);
+  EXPECT_LT(after, 0.5 * before);
+}
+
+TEST(FactorGraph, WallObservationsCorrectHeadingDrift) {
+  const auto truth = rectangleLoop();
+  const auto odom = driftingOdometry(truth);
+  FactorGraph g{BackendConfig()};
+  addOdometry(&g, odom);
+  const double before = maxError(g, truth);
+  // Four walls just outside the rectangle, facing in: x = -1, x = 11, y = -1, y = 7.
+  const std::vector<WallPlane> walls = {
+      {0.0, 1.0}, {M_PI, 11.0}, {M_PI / 2, 1.0}, {-M_PI / 2, 7.0}};
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  for (uint32_t w = 0; w < walls.size(); ++w) {
+    // Initialise each wall from its first observation through the drifting odometry.
+    const Pose3& seen_from = odom[0];
+    const Eigen::Vector3d n_b = truth[0].rotation().transpose() * walls[w].normal();
+    const double d_b = walls[w].d + walls[w].normal().dot(truth[0].translation());
+    const Eigen::Vector3d n_map = seen_from.rotation() * n_b;
+    g.addWall(w, WallPlane::fromNormalD(n_map, d_b - n_map.dot(seen_from.translation())));
+  }
+  for (size_t i = 0; i < truth.size(); ++i) {
+    for (uint32_t w = 0; w < walls.size(); ++w) {
+      const Eigen::Vector3d n_b = truth[i].rotation().transpose() * walls[w].normal();
+      const double d_b = walls[w].d + walls[w].normal().dot(truth[i].translation());
+      g.addWallObservation(i, w, n_b, d_b + noise(rng));
+    }
+  }
+  EXPECT_TRUE(g.optimize().usable);
+  const double after = maxError(g, truth);
+  EXPECT_LT(after, 0.2) << "before: " << before;
+  EXPECT_NEAR(g.wall(1).d, 11.0, 0.1);
+}
+
+// Observations from keyframe 0 at the (fixed) origin hold the walls where they are.
+void observeFromOrigin(FactorGraph* g, const std::vector<uint32_t>& walls) {
+  for (uint32_t w : walls) g->addWallObservation(0, w, g->wall(w).normal(), g->wall(w).d);
+}
+
+TEST(FactorGraph, RoomCentreSettlesMidwayBetweenItsWalls) {
+  FactorGraph g{BackendConfig()};
+  g.addKeyframe(0, Pose3::Identity());
+  g.addWall(0, {0.0, 1.0});        // x = -1
+  g.addWall(1, {M_PI, 5.0});       // x = 5
+  g.addWall(2, {M_PI / 2, 2.0});   // y = -2
+  g.addWall(3, {-M_PI / 2, 4.0});  // y = 4
+  observeFromOrigin(&g, {0, 1, 2, 3});
+  g.setRoom(0, Eigen::Vector2d(0.0, 0.0), {{0, 1}, {2, 3}}, std::nullopt);
+  // A corridor between walls 0 and 1, anchored along y at its free-space centre y = 10.
+  g.setRoom(1, Eigen::Vector2d(0.0, 0.0), {{0, 1}}, Eigen::Vector2d(0.0, 10.0));
+  EXPECT_TRUE(g.optimize().usable);
+  EXPECT_NEAR(g.roomCenter(0).x(), 2.0, 1e-3);
+  EXPECT_NEAR(g.roomCenter(0).y(), 1.0, 1e-3);
+  EXPECT_NEAR(g.roomCenter(1).x(), 2.0, 1e-3);
+  EXPECT_NEAR(g.roomCenter(1).y(), 10.0, 1e-3);
+}
+
+TEST(FactorGraph, MergingWallsMovesObservationsAndRooms) {
+  FactorGraph g{BackendConfig()};
+  g.addKeyframe(0, Pose3::Identity());
+  g.addWall(0, {0.0, 1.0});
+  g.addWall(1, {0.0, 1.2});  // the same wall, created twice
+  g.addWall(2, {M_PI, 5.0});
+  observeFromOrigin(&g, {0, 2});
+  g.addWallObservation(0, 1, Eigen::Vector3d::UnitX(), 1.0);  // initialised 20 cm off
+  g.setRoom(0, Eigen::Vector2d(0, 0), {{1, 2}}, Eigen::Vector2d(0, 0));
+  g.mergeWalls(0, 1);
+  EXPECT_EQ(g.wallCount(), 2u);
+  EXPECT_FALSE(g.hasWall(1));
+  EXPECT_TRUE(g.optimize().usable);
+  EXPECT_NEAR(g.wall(0).d, 1.0, 1e-3);
+  EXPECT_NEAR(g.roomCenter(0).x(), 2.0, 1e-2);
+}
+
+TEST(FactorGraph, WallToWallEdgePullsDuplicatesTogether) {
+  FactorGraph g{BackendConfig()};
+  g.addKeyframe(0, Pose3::Identity());
+  g.addWall(0, {0.0, 1.0});
+  g.addWall(1, {0.05, 1.3});
+  g.addWallObservation(0, 0, Eigen::Vector3d::UnitX(), 1.0);
+  g.addWallToWall(0, 1);
+  EXPECT_TRUE(g.optimize().usable);
+  EXPECT_NEAR(g.wall(1).theta, 0.0, 1e-3);
+  EXPECT_NEAR(g.wall(1).d, 1.0, 1e-3);
+}
+
+TEST(FactorGraph, RejectsBadInput) {
+  FactorGraph g{BackendConfig()};
+  g.addKeyframe(0, Pose3::Identity());
+  EXPECT_THROW(g.addRelativePose(0, 1, Pose3::Identity(), Matrix6d::Identity(), false),
+               std::invalid_argument);
+  g.addKeyframe(1, Pose3::Identity());
+  EXPECT_THROW(g.addRelativePose(0, 1, Pose3::Identity(), -Matrix6d::Identity(), false),
+               std::invalid_argument);
+  EXPECT_THROW(WallPlane::fromNormalD(Eigen::Vector3d::UnitZ(), 1.0), std::invalid_argument);
+  BackendConfig bad;
+  bad.room_sigma = 0;
+  EXPECT_THROW(FactorGraph{bad}, ConfigError);
+}
+
+}  // namespace
+}  // namespace tacs
