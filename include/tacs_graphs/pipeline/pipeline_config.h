@@ -7,15 +7,18 @@
 
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/frames.h"
+#include "tacs_graphs/walls/walls_config.h"
 
 namespace tacs {
 
 struct PipelineConfig {
   FramesConfig frames;
+  WallsConfig walls;
 
   template <class V>
   void visit(V& v) {
     v("frames", frames);
+    v("walls", walls);
   }
   void validate() const;
 };
