@@ -8,16 +8,19 @@
 #include "tacs_graphs/backend/factor_graph.h"
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/frames.h"
+#include "tacs_graphs/walls/walls_config.h"
 
 namespace tacs {
 
 struct PipelineConfig {
   FramesConfig frames;
+  WallsConfig walls;
   BackendConfig backend;
 
   template <class V>
   void visit(V& v) {
     v("frames", frames);
+    v("walls", walls);
     v("backend", backend);
   }
   void validate() const;

@@ -4,6 +4,7 @@ namespace tacs {
 
 void PipelineConfig::validate() const {
   frames.validate();
+  walls.validate();
   backend.validate();
 }
 

@@ -1,0 +1,116 @@
+// Wall extraction by sequential RANSAC (paper Sec. III-B-1, "Wall Layer Segmentation").
+//
+// Per keyframe cloud in the gravity-aligned base frame: voxel downsampling, then planes are found
+// one after the other, largest first, and their inliers removed. Hypotheses are drawn from three
+// points of one neighbourhood (so walls that hold a few percent of the cloud are still sampled),
+// scored on a random subsample, and the best one is refined by PCA on its inliers. Vertical
+// planes become wall observations after splitting their inliers into runs along the wall, so one
+// plane model never joins two collinear walls with a gap between them (a door, a second room).
+// Horizontal planes (floor, ceiling, table tops) are reported apart; slanted planes are dropped.
+// Deterministic for a given cloud and seed.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "tacs_graphs/common/types.h"
+#include "tacs_graphs/walls/wall_segment.h"
+
+namespace tacs {
+
+struct WallExtractionConfig {
+  /// Voxel size of the downsampling before RANSAC (m); 0 keeps every point.
+  double voxel_size = 0.1;
+  /// Points closer to / farther from the base origin than this are ignored (m).
+  double min_range = 0.5;
+  double max_range = 30.0;
+  /// Point-to-plane distance below which a point supports a plane (m).
+  double distance_threshold = 0.05;
+  /// Hypotheses drawn per extracted plane.
+  int ransac_iterations = 200;
+  /// Points a hypothesis is scored on (random subsample of the points still unexplained).
+  int score_subsample = 1024;
+  /// Edge of the neighbourhood cells the three sample points are drawn from (m).
+  double sample_cell = 1.5;
+  /// Least-squares (PCA) refinements of the best hypothesis on its inliers.
+  int refine_iterations = 3;
+  /// Upper bound on planes extracted per cloud.
+  int max_planes = 30;
+  /// Stop when fewer unexplained points than this remain.
+  int min_remaining_points = 100;
+  /// Stop when the best remaining plane has fewer inliers than this.
+  int min_plane_inliers = 40;
+  /// A plane is vertical when its normal is within this angle of the horizontal plane (deg).
+  double vertical_tolerance_deg = 10.0;
+  /// A plane is horizontal when its normal is within this angle of the z axis (deg).
+  double horizontal_tolerance_deg = 10.0;
+  /// Inliers of a vertical plane further apart than this along the wall start a new segment (m).
+  double max_gap = 0.5;
+  /// A wall segment needs at least this many inliers...
+  int min_wall_inliers = 60;
+  /// ...this length (m)...
+  double min_wall_length = 0.6;
+  /// ...and this height range (m).
+  double min_wall_height = 0.3;
+  /// Horizontal planes with fewer inliers are not reported (their points are still removed).
+  int min_horizontal_inliers = 200;
+  /// Seed of the random sampling.
+  int seed = 1;
+
+  template <class V>
+  void visit(V& v) {
+    v("voxel_size", voxel_size);
+    v("min_range", min_range);
+    v("max_range", max_range);
+    v("distance_threshold", distance_threshold);
+    v("ransac_iterations", ransac_iterations);
+    v("score_subsample", score_subsample);
+    v("sample_cell", sample_cell);
+    v("refine_iterations", refine_iterations);
+    v("max_planes", max_planes);
+    v("min_remaining_points", min_remaining_points);
+    v("min_plane_inliers", min_plane_inliers);
+    v("vertical_tolerance_deg", vertical_tolerance_deg);
+    v("horizontal_tolerance_deg", horizontal_tolerance_deg);
+    v("max_gap", max_gap);
+    v("min_wall_inliers", min_wall_inliers);
+    v("min_wall_length", min_wall_length);
+    v("min_wall_height", min_wall_height);
+    v("min_horizontal_inliers", min_horizontal_inliers);
+    v("seed", seed);
+  }
+  /// Throws ConfigError naming the field ("walls.extraction.<field>").
+  void validate() const;
+};
+
+struct WallExtractionResult {
+  /// Vertical wall segments in the cloud's frame, d >= 0, sorted by decreasing inliers.
+  std::vector<WallSegment> walls;
+  /// Horizontal planes (floor, ceiling, ...), endpoints = xy bounding box, by decreasing inliers.
+  std::vector<WallSegment> horizontal;
+  /// Points given, points after range cropping and downsampling.
+  size_t input_points = 0;
+  size_t downsampled_points = 0;
+  /// Planes extracted by RANSAC (vertical, horizontal and slanted).
+  int planes_found = 0;
+  double time_ms = 0.0;
+};
+
+class WallExtractor {
+ public:
+  /// Validates the configuration (throws ConfigError).
+  explicit WallExtractor(const WallExtractionConfig& config);
+
+  /// Extracts walls from a cloud in the gravity-aligned base frame (z up). Normals are turned to
+  /// face `viewpoint` (the sensor position in that frame; for walls only its xy matters), which
+  /// gives d >= 0 whenever the viewpoint is at the origin.
+  WallExtractionResult extract(const PointCloud& cloud_in_base,
+                               const Eigen::Vector3d& viewpoint = Eigen::Vector3d::Zero()) const;
+
+  const WallExtractionConfig& config() const { return config_; }
+
+ private:
+  WallExtractionConfig config_;
+};
+
+}  // namespace tacs

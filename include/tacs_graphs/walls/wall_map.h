@@ -1,0 +1,104 @@
+// Wall landmarks in the map frame and the association of wall observations to them.
+//
+// An observation (a WallSegment in the base frame) is moved to the map with the keyframe pose and
+// matched to the landmark on the same side of the same plane whose extent it overlaps or nearly
+// touches along the wall; otherwise it starts a new landmark. Matched landmarks grow their extent.
+// Because extents grow, two landmarks can come to describe one wall (a wall first seen in two
+// pieces); mergeDuplicates() folds them and reports which id went into which, so the backend can
+// move the removed landmark's factors to the kept one.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "tacs_graphs/common/types.h"
+#include "tacs_graphs/walls/wall_segment.h"
+
+namespace tacs {
+
+struct WallLandmark {
+  uint32_t id = 0;
+  /// Unit normal in the map frame, facing the side the wall was observed from.
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
+  /// n.p + d = 0 in the map frame (m).
+  double d = 0.0;
+  /// Extent on the plane's line in the map xy plane (m), ordered along wallAxis(normal).
+  Eigen::Vector2d endpoints[2] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+  /// Height range (m, map frame).
+  double z_min = 0.0;
+  double z_max = 0.0;
+  /// Observations associated (including those of merged landmarks).
+  uint32_t observations = 0;
+  /// Sum of the inliers of those observations: the weight of the running plane average.
+  uint64_t inliers = 0;
+
+  double length() const { return (endpoints[1] - endpoints[0]).norm(); }
+  Eigen::Vector2d midpoint() const { return 0.5 * (endpoints[0] + endpoints[1]); }
+};
+
+struct WallAssociationConfig {
+  /// Largest angle between the normals of an observation and its landmark (deg). Opposite
+  /// normals (the two faces of one wall) never match.
+  double max_normal_angle_deg = 10.0;
+  /// Largest distance between the planes, measured at the segments' midpoints (m).
+  double max_plane_distance = 0.3;
+  /// Largest gap along the wall between the observation's and the landmark's extents (m);
+  /// negative gaps are overlaps. Keep it below a door width to keep walls of two rooms apart.
+  double max_gap = 0.5;
+  /// Landmark planes are the inlier-weighted average of their observations until
+  /// updateLandmarkPlane() sets them; with false they keep the plane of their first observation.
+  bool average_planes = true;
+
+  template <class V>
+  void visit(V& v) {
+    v("max_normal_angle_deg", max_normal_angle_deg);
+    v("max_plane_distance", max_plane_distance);
+    v("max_gap", max_gap);
+    v("average_planes", average_planes);
+  }
+  /// Throws ConfigError naming the field ("walls.association.<field>").
+  void validate() const;
+};
+
+class WallMap {
+ public:
+  struct Association {
+    /// Index into the observation vector given to associate().
+    int observation_index;
+    uint32_t landmark_id;
+    /// True when the observation created the landmark.
+    bool created;
+  };
+
+  /// Validates the configuration (throws ConfigError).
+  explicit WallMap(const WallAssociationConfig& config = {});
+
+  /// Associates every observation (base frame) with a landmark, creating landmarks as needed,
+  /// in observation order. Returns one entry per observation.
+  std::vector<Association> associate(const std::vector<WallSegment>& observations_in_base,
+                                     const Pose3& T_map_base);
+
+  /// Folds landmarks that describe the same wall (same side, same plane within the association
+  /// gates, overlapping or adjacent extents) into the one with more observations (ties: lower id).
+  /// Returns (removed_id, kept_id) pairs; kept_id always names a landmark that still exists.
+  std::vector<std::pair<uint32_t, uint32_t>> mergeDuplicates();
+
+  const std::map<uint32_t, WallLandmark>& landmarks() const { return landmarks_; }
+
+  /// Sets a landmark's plane (after optimisation) and moves its extent onto the new plane. A
+  /// normal given with the opposite sign is flipped so the landmark keeps its facing direction.
+  /// Unknown ids are ignored.
+  void updateLandmarkPlane(uint32_t id, const Eigen::Vector3d& normal, double d);
+
+  const WallAssociationConfig& config() const { return config_; }
+
+ private:
+  WallAssociationConfig config_;
+  std::map<uint32_t, WallLandmark> landmarks_;
+  uint32_t next_id_ = 0;
+};
+
+}  // namespace tacs

@@ -1,0 +1,431 @@
+#include "tacs_graphs/walls/wall_extractor.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <utility>
+
+#include "tacs_graphs/common/config.h"
+#include "tacs_graphs/common/timing.h"
+
+namespace tacs {
+
+void WallExtractionConfig::validate() const {
+  const std::string p = "walls.extraction.";
+  requireConfig(voxel_size >= 0.0, p + "voxel_size", "must be >= 0");
+  requireConfig(min_range >= 0.0 && max_range > min_range, p + "max_range",
+                "need 0 <= min_range < max_range");
+  requireConfig(distance_threshold > 0.0, p + "distance_threshold", "must be > 0");
+  requireConfig(ransac_iterations > 0, p + "ransac_iterations", "must be > 0");
+  requireConfig(score_subsample >= 16, p + "score_subsample", "must be >= 16");
+  requireConfig(sample_cell > 0.0, p + "sample_cell", "must be > 0");
+  requireConfig(refine_iterations >= 0, p + "refine_iterations", "must be >= 0");
+  requireConfig(max_planes > 0, p + "max_planes", "must be > 0");
+  requireConfig(min_remaining_points >= 3, p + "min_remaining_points", "must be >= 3");
+  requireConfig(min_plane_inliers >= 3, p + "min_plane_inliers", "must be >= 3");
+  requireConfig(vertical_tolerance_deg > 0.0 && vertical_tolerance_deg < 45.0,
+                p + "vertical_tolerance_deg", "must be in (0, 45)");
+  requireConfig(horizontal_tolerance_deg > 0.0 && horizontal_tolerance_deg < 45.0,
+                p + "horizontal_tolerance_deg", "must be in (0, 45)");
+  requireConfig(max_gap > 0.0, p + "max_gap", "must be > 0");
+  requireConfig(min_wall_inliers >= 3, p + "min_wall_inliers", "must be >= 3");
+  requireConfig(min_wall_length >= 0.0, p + "min_wall_length", "must be >= 0");
+  requireConfig(min_wall_height >= 0.0, p + "min_wall_height", "must be >= 0");
+  requireConfig(min_horizontal_inliers >= 3, p + "min_horizontal_inliers", "must be >= 3");
+}
+
+namespace {
+
+using Points = std::vector<Eigen::Vector3f>;
+
+// Integer cell key of a point (21 bits per axis, +-1e6 cells).
+uint64_t cellKey(const Eigen::Vector3f& p, float inv_cell) {
+  constexpr int64_t kOffset = 1 << 20;
+  auto c = [&](float v) {
+    return static_cast<uint64_t>(static_cast<int64_t>(std::floor(v * inv_cell)) + kOffset) &
+           0x1FFFFF;
+  };
+  return (c(p.x()) << 42) | (c(p.y()) << 21) | c(p.z());
+}
+
+// Dense ids for integer keys in order of first occurrence (open addressing). The storage is
+// kept between calls: fresh multi-megabyte allocations cost more than the work on them.
+class KeyIndexer {
+ public:
+  void reset(size_t max_keys) {
+    for (uint32_t s : used_) keys_[s] = kEmpty;
+    used_.clear();
+    size_t capacity = 16;
+    while (capacity < 2 * max_keys) capacity <<= 1;
+    if (capacity > keys_.size()) {
+      keys_.assign(capacity, kEmpty);
+      ids_.resize(capacity);
+    }
+    mask_ = keys_.size() - 1;
+  }
+  uint32_t idOf(uint64_t key) {
+    size_t h = ((key * 0x9E3779B97F4A7C15ull) >> 20) & mask_;
+    while (keys_[h] != kEmpty && keys_[h] != key) h = (h + 1) & mask_;
+    if (keys_[h] == kEmpty) {
+      keys_[h] = key;
+      ids_[h] = static_cast<uint32_t>(used_.size());
+      used_.push_back(static_cast<uint32_t>(h));
+    }
+    return ids_[h];
+  }
+  size_t size() const { return used_.size(); }
+
+ private:
+  static constexpr uint64_t kEmpty = ~uint64_t{0};
+  std::vector<uint64_t> keys_;
+  std::vector<uint32_t> ids_;
+  std::vector<uint32_t> used_;
+  size_t mask_ = 0;
+};
+
+// Points grouped by sampling cell, so the 3 points of a hypothesis come from one neighbourhood.
+struct SampleCells {
+  std::vector<uint32_t> cell_of;  // point -> cell
+  std::vector<uint32_t> members;  // point indices grouped by cell
+  std::vector<uint32_t> begin;    // cell -> first index into members (size cells + 1)
+};
+
+// Per-thread buffers reused by every extract() call.
+struct Scratch {
+  KeyIndexer indexer;
+  std::vector<Eigen::Vector4f> sums;  // voxel xyz sum and count
+  Points pts;
+  SampleCells cells;
+  std::vector<uint8_t> active;
+  std::vector<uint32_t> active_list;
+  std::vector<uint32_t> inliers;
+  std::vector<float> sub_x, sub_y, sub_z;  // scoring subsample, one array per axis (vectorises)
+};
+
+// Range crop and voxel-centroid downsampling into scratch->pts.
+void cropAndDownsample(const PointCloud& cloud, const WallExtractionConfig& cfg, Scratch* scratch) {
+  const float r2_min = static_cast<float>(cfg.min_range * cfg.min_range);
+  const float r2_max = static_cast<float>(cfg.max_range * cfg.max_range);
+  const bool voxelize = cfg.voxel_size > 0.0;
+  const float inv = voxelize ? static_cast<float>(1.0 / cfg.voxel_size) : 1.f;
+  Points& pts = scratch->pts;
+  auto& sums = scratch->sums;
+  pts.clear();
+  sums.clear();
+  scratch->indexer.reset(cloud.size());
+  for (const auto& q : cloud.points) {
+    if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) continue;
+    const Eigen::Vector3f p(q.x, q.y, q.z);
+    const float r2 = p.squaredNorm();
+    if (r2 < r2_min || r2 > r2_max) continue;
+    if (!voxelize) {
+      pts.push_back(p);
+      continue;
+    }
+    const uint32_t id = scratch->indexer.idOf(cellKey(p, inv));
+    if (id == sums.size()) sums.emplace_back(0.f, 0.f, 0.f, 0.f);
+    sums[id] += Eigen::Vector4f(p.x(), p.y(), p.z(), 1.f);
+  }
+  for (const auto& s : sums) pts.push_back(s.head<3>() / s.w());
+}
+
+// Groups the points by sampling cell (counting sort, stable in point order).
+void buildSampleCells(const Points& pts, double cell, Scratch* scratch) {
+  const float inv = static_cast<float>(1.0 / cell);
+  SampleCells& cells = scratch->cells;
+  scratch->indexer.reset(pts.size());
+  cells.cell_of.resize(pts.size());
+  for (size_t i = 0; i < pts.size(); ++i)
+    cells.cell_of[i] = scratch->indexer.idOf(cellKey(pts[i], inv));
+  cells.begin.assign(scratch->indexer.size() + 1, 0);
+  for (uint32_t c : cells.cell_of) ++cells.begin[c + 1];
+  for (size_t c = 1; c < cells.begin.size(); ++c) cells.begin[c] += cells.begin[c - 1];
+  cells.members.resize(pts.size());
+  std::vector<uint32_t>& fill = scratch->inliers;  // borrowed as the insertion cursor
+  fill.assign(cells.begin.begin(), cells.begin.end() - 1);
+  for (size_t i = 0; i < pts.size(); ++i) cells.members[fill[cells.cell_of[i]]++] = uint32_t(i);
+}
+
+struct Plane {
+  Eigen::Vector3d n = Eigen::Vector3d::UnitZ();
+  double d = 0.0;
+};
+
+// Least-squares plane (PCA) through the given points; centroid returned for the extent.
+Plane fitPlane(const Points& pts, const std::vector<uint32_t>& idx, Eigen::Vector3d* centroid) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (uint32_t i : idx) c += pts[i].cast<double>();
+  c /= static_cast<double>(idx.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (uint32_t i : idx) {
+    const Eigen::Vector3d q = pts[i].cast<double>() - c;
+    cov.noalias() += q * q.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  Plane plane;
+  plane.n = eig.eigenvectors().col(0).normalized();  // smallest eigenvalue
+  plane.d = -plane.n.dot(c);
+  if (centroid) *centroid = c;
+  return plane;
+}
+
+void collectInliers(const Points& pts, const std::vector<uint32_t>& candidates, const Plane& pl,
+                    float thr, std::vector<uint32_t>* out) {
+  out->clear();
+  const Eigen::Vector3f n = pl.n.cast<float>();
+  const float d = static_cast<float>(pl.d);
+  for (uint32_t i : candidates) {
+    if (std::abs(n.dot(pts[i]) + d) < thr) out->push_back(i);
+  }
+}
+
+void faceViewpoint(const Eigen::Vector3d& viewpoint, bool horizontal_only_z, Plane* pl) {
+  Eigen::Vector3d v = viewpoint;
+  if (!horizontal_only_z) v.z() = 0.0;  // walls: only the xy position of the sensor matters
+  if (pl->n.dot(v) + pl->d < 0.0) {
+    pl->n = -pl->n;
+    pl->d = -pl->d;
+  }
+}
+
+// One bounded segment from a run of inliers of a vertical plane, or false when too small.
+bool makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
+                     const WallExtractionConfig& cfg, const Eigen::Vector3d& viewpoint,
+                     WallSegment* wall) {
+  if (run.size() < static_cast<size_t>(cfg.min_wall_inliers)) return false;
+  Eigen::Vector3d c;
+  Plane pl = fitPlane(pts, run, &c);
+  faceViewpoint(viewpoint, false, &pl);
+  const Eigen::Vector2d axis = wallAxis(pl.n);
+  double t_min = std::numeric_limits<double>::infinity(), t_max = -t_min;
+  double z_min = t_min, z_max = -t_min;
+  for (uint32_t i : run) {
+    const Eigen::Vector3d p = pts[i].cast<double>();
+    const double t = axis.dot(p.head<2>() - c.head<2>());
+    t_min = std::min(t_min, t);
+    t_max = std::max(t_max, t);
+    z_min = std::min(z_min, p.z());
+    z_max = std::max(z_max, p.z());
+  }
+  if (t_max - t_min < cfg.min_wall_length || z_max - z_min < cfg.min_wall_height) return false;
+  const double z_mid = 0.5 * (z_min + z_max);
+  wall->normal = pl.n;
+  wall->d = pl.d;
+  wall->inliers = static_cast<uint32_t>(run.size());
+  wall->endpoints[0] = projectOntoWallLine(pl.n, pl.d, c.head<2>() + t_min * axis, z_mid);
+  wall->endpoints[1] = projectOntoWallLine(pl.n, pl.d, c.head<2>() + t_max * axis, z_mid);
+  wall->z_min = z_min;
+  wall->z_max = z_max;
+  return true;
+}
+
+// Splits the inliers of a vertical plane into runs along the wall separated by > max_gap and
+// appends the runs that make valid segments.
+void splitIntoWalls(const Points& pts, const std::vector<uint32_t>& inliers, const Plane& pl,
+                    const WallExtractionConfig& cfg, const Eigen::Vector3d& viewpoint,
+                    std::vector<WallSegment>* walls) {
+  const Eigen::Vector2f axis = wallAxis(pl.n).cast<float>();
+  std::vector<std::pair<float, uint32_t>> along(inliers.size());
+  for (size_t k = 0; k < inliers.size(); ++k) {
+    along[k] = {axis.dot(pts[inliers[k]].head<2>()), inliers[k]};
+  }
+  std::sort(along.begin(), along.end());
+  std::vector<uint32_t> run;
+  for (size_t k = 0; k < along.size(); ++k) {
+    if (k > 0 && along[k].first - along[k - 1].first > cfg.max_gap) {
+      WallSegment wall;
+      if (makeWallSegment(pts, run, cfg, viewpoint, &wall)) walls->push_back(wall);
+      run.clear();
+    }
+    run.push_back(along[k].second);
+  }
+  WallSegment wall;
+  if (makeWallSegment(pts, run, cfg, viewpoint, &wall)) walls->push_back(wall);
+}
+
+WallSegment makeHorizontal(const Points& pts, const std::vector<uint32_t>& inliers, Plane pl,
+                           const Eigen::Vector3d& viewpoint) {
+  faceViewpoint(viewpoint, true, &pl);
+  WallSegment h;
+  h.normal = pl.n;
+  h.d = pl.d;
+  h.inliers = static_cast<uint32_t>(inliers.size());
+  Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity());
+  Eigen::Vector3f hi = -lo;
+  for (uint32_t i : inliers) {
+    lo = lo.cwiseMin(pts[i]);
+    hi = hi.cwiseMax(pts[i]);
+  }
+  h.endpoints[0] = lo.head<2>().cast<double>();
+  h.endpoints[1] = hi.head<2>().cast<double>();
+  h.z_min = lo.z();
+  h.z_max = hi.z();
+  return h;
+}
+
+// Sequential RANSAC state: the points not yet explained by a plane.
+class PlaneSearch {
+ public:
+  PlaneSearch(const WallExtractionConfig& cfg, Scratch* scratch)
+      : pts_(scratch->pts),
+        cfg_(cfg),
+        cells_(scratch->cells),
+        active_(scratch->active),
+        active_list_(scratch->active_list),
+        sub_x_(scratch->sub_x),
+        sub_y_(scratch->sub_y),
+        sub_z_(scratch->sub_z),
+        rng_(static_cast<uint32_t>(cfg.seed)) {
+    buildSampleCells(pts_, cfg.sample_cell, scratch);
+    active_.assign(pts_.size(), 1);
+    active_list_.resize(pts_.size());
+    for (size_t i = 0; i < pts_.size(); ++i) active_list_[i] = uint32_t(i);
+  }
+
+  size_t remaining() const { return active_list_.size(); }
+
+  // Finds the best plane among the remaining points and its inliers; false if none.
+  bool next(Plane* plane, std::vector<uint32_t>* inliers) {
+    if (active_list_.size() < 3) return false;
+    drawScoringSubsample();
+    const float thr = static_cast<float>(cfg_.distance_threshold);
+    Plane best;
+    int best_score = 0;
+    for (int it = 0; it < cfg_.ransac_iterations; ++it) {
+      Plane hyp;
+      if (!sampleHypothesis(&hyp)) continue;
+      const int score = this->score(hyp);
+      if (score > best_score) {
+        best_score = score;
+        best = hyp;
+      }
+    }
+    if (best_score < 3) return false;
+    collectInliers(pts_, active_list_, best, thr, inliers);
+    for (int r = 0; r < cfg_.refine_iterations && inliers->size() >= 3; ++r) {
+      best = fitPlane(pts_, *inliers, nullptr);
+      collectInliers(pts_, active_list_, best, thr, inliers);
+    }
+    *plane = best;
+    return true;
+  }
+
+  void remove(const std::vector<uint32_t>& idx) {
+    for (uint32_t i : idx) active_[i] = 0;
+    active_list_.erase(std::remove_if(active_list_.begin(), active_list_.end(),
+                                      [&](uint32_t i) { return !active_[i]; }),
+                       active_list_.end());
+  }
+
+ private:
+  void drawScoringSubsample() {
+    const size_t n = active_list_.size();
+    const size_t m = std::min<size_t>(n, static_cast<size_t>(cfg_.score_subsample));
+    sub_x_.resize(m);
+    sub_y_.resize(m);
+    sub_z_.resize(m);
+    std::uniform_int_distribution<size_t> pick(0, n - 1);
+    for (size_t k = 0; k < m; ++k) {
+      const Eigen::Vector3f& p = pts_[active_list_[m == n ? k : pick(rng_)]];
+      sub_x_[k] = p.x();
+      sub_y_[k] = p.y();
+      sub_z_[k] = p.z();
+    }
+  }
+
+  int score(const Plane& hyp) const {
+    const float nx = static_cast<float>(hyp.n.x()), ny = static_cast<float>(hyp.n.y());
+    const float nz = static_cast<float>(hyp.n.z()), d = static_cast<float>(hyp.d);
+    const float thr = static_cast<float>(cfg_.distance_threshold);
+    const size_t m = sub_x_.size();
+    int count = 0;
+    for (size_t k = 0; k < m; ++k) {
+      count += std::abs(nx * sub_x_[k] + ny * sub_y_[k] + nz * sub_z_[k] + d) < thr;
+    }
+    return count;
+  }
+
+  // Three remaining points from one sampling cell, or false after a few failed tries.
+  bool sampleHypothesis(Plane* hyp) {
+    std::uniform_int_distribution<size_t> pick(0, active_list_.size() - 1);
+    const uint32_t a = active_list_[pick(rng_)];
+    const uint32_t cell = cells_.cell_of[a];
+    const uint32_t b0 = cells_.begin[cell], count = cells_.begin[cell + 1] - b0;
+    if (count < 3) return false;
+    std::uniform_int_distribution<uint32_t> in_cell(0, count - 1);
+    uint32_t others[2];
+    int found = 0;
+    for (int tries = 0; tries < 8 && found < 2; ++tries) {
+      const uint32_t c = cells_.members[b0 + in_cell(rng_)];
+      if (c == a || !active_[c] || (found == 1 && c == others[0])) continue;
+      others[found++] = c;
+    }
+    if (found < 2) return false;
+    const Eigen::Vector3d pa = pts_[a].cast<double>();
+    const Eigen::Vector3d cross =
+        (pts_[others[0]].cast<double>() - pa).cross(pts_[others[1]].cast<double>() - pa);
+    const double norm = cross.norm();
+    if (norm < 1e-4) return false;  // (nearly) collinear sample
+    hyp->n = cross / norm;
+    hyp->d = -hyp->n.dot(pa);
+    return true;
+  }
+
+  const Points& pts_;
+  const WallExtractionConfig& cfg_;
+  const SampleCells& cells_;
+  std::vector<uint8_t>& active_;
+  std::vector<uint32_t>& active_list_;
+  std::vector<float>& sub_x_;
+  std::vector<float>& sub_y_;
+  std::vector<float>& sub_z_;
+  std::mt19937 rng_;
+};
+
+bool byInliers(const WallSegment& a, const WallSegment& b) { return a.inliers > b.inliers; }
+
+}  // namespace
+
+WallExtractor::WallExtractor(const WallExtractionConfig& config) : config_(config) {
+  config_.validate();
+}
+
+WallExtractionResult WallExtractor::extract(const PointCloud& cloud_in_base,
+                                            const Eigen::Vector3d& viewpoint) const {
+  Stopwatch watch;
+  WallExtractionResult result;
+  result.input_points = cloud_in_base.size();
+  thread_local Scratch scratch;
+  cropAndDownsample(cloud_in_base, config_, &scratch);
+  const Points& pts = scratch.pts;
+  result.downsampled_points = pts.size();
+
+  const double sin_vertical = std::sin(config_.vertical_tolerance_deg * M_PI / 180.0);
+  const double cos_horizontal = std::cos(config_.horizontal_tolerance_deg * M_PI / 180.0);
+  PlaneSearch search(config_, &scratch);
+  Plane plane;
+  std::vector<uint32_t>& inliers = scratch.inliers;
+  while (result.planes_found < config_.max_planes &&
+         search.remaining() >= static_cast<size_t>(config_.min_remaining_points) &&
+         search.next(&plane, &inliers) &&
+         inliers.size() >= static_cast<size_t>(config_.min_plane_inliers)) {
+    ++result.planes_found;
+    const double nz = std::abs(plane.n.z());
+    if (nz <= sin_vertical) {
+      splitIntoWalls(pts, inliers, plane, config_, viewpoint, &result.walls);
+    } else if (nz >= cos_horizontal &&
+               inliers.size() >= static_cast<size_t>(config_.min_horizontal_inliers)) {
+      result.horizontal.push_back(makeHorizontal(pts, inliers, plane, viewpoint));
+    }
+    search.remove(inliers);  // slanted planes and rejected fragments are explained away too
+  }
+  std::stable_sort(result.walls.begin(), result.walls.end(), byInliers);
+  std::stable_sort(result.horizontal.begin(), result.horizontal.end(), byInliers);
+  result.time_ms = watch.elapsedMs();
+  return result;
+}
+
+}  // namespace tacs

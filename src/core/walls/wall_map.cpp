@@ -1,0 +1,175 @@
+#include "tacs_graphs/walls/wall_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "tacs_graphs/common/config.h"
+
+namespace tacs {
+
+void WallAssociationConfig::validate() const {
+  const std::string p = "walls.association.";
+  requireConfig(max_normal_angle_deg > 0.0 && max_normal_angle_deg < 90.0,
+                p + "max_normal_angle_deg", "must be in (0, 90)");
+  requireConfig(max_plane_distance > 0.0, p + "max_plane_distance", "must be > 0");
+  requireConfig(max_gap >= 0.0, p + "max_gap", "must be >= 0");
+}
+
+namespace {
+
+double midHeight(const WallLandmark& w) { return 0.5 * (w.z_min + w.z_max); }
+
+// Re-projects a landmark's extent onto its current plane line, covering the given points.
+void setExtent(WallLandmark* w, const std::vector<Eigen::Vector2d>& points) {
+  const Eigen::Vector2d axis = wallAxis(w->normal);
+  const double z = midHeight(*w);
+  double t_min = std::numeric_limits<double>::infinity(), t_max = -t_min;
+  Eigen::Vector2d lo = Eigen::Vector2d::Zero(), hi = lo;
+  for (const auto& p : points) {
+    const Eigen::Vector2d q = projectOntoWallLine(w->normal, w->d, p, z);
+    const double t = axis.dot(q);
+    if (t < t_min) {
+      t_min = t;
+      lo = q;
+    }
+    if (t > t_max) {
+      t_max = t;
+      hi = q;
+    }
+  }
+  w->endpoints[0] = lo;
+  w->endpoints[1] = hi;
+}
+
+// Distance between the two planes at the segments' midpoints (mean of both directions, m).
+double planeGap(const WallLandmark& a, const WallLandmark& b) {
+  return 0.5 * (std::abs(planeDistance(a.normal, a.d, b.midpoint(), midHeight(b))) +
+                std::abs(planeDistance(b.normal, b.d, a.midpoint(), midHeight(a))));
+}
+
+// Gap between the extents along a's wall axis (m); negative when they overlap.
+double extentGap(const WallLandmark& a, const WallLandmark& b) {
+  const Eigen::Vector2d axis = wallAxis(a.normal);
+  const double a0 = axis.dot(a.endpoints[0]), a1 = axis.dot(a.endpoints[1]);
+  const double b0 = axis.dot(b.endpoints[0]), b1 = axis.dot(b.endpoints[1]);
+  return std::max(std::min(b0, b1) - std::max(a0, a1), std::min(a0, a1) - std::max(b0, b1));
+}
+
+// Plane distance when a and b pass the association gates, or a negative value.
+double matchDistance(const WallLandmark& a, const WallLandmark& b,
+                     const WallAssociationConfig& cfg) {
+  if (a.normal.dot(b.normal) < std::cos(cfg.max_normal_angle_deg * M_PI / 180.0)) return -1.0;
+  const double dist = planeGap(a, b);
+  if (dist > cfg.max_plane_distance || extentGap(a, b) > cfg.max_gap) return -1.0;
+  return dist;
+}
+
+// Folds `other` into `target`: plane average (if enabled), extent and height union, counts.
+void absorb(const WallLandmark& other, bool average_plane, WallLandmark* target) {
+  std::vector<Eigen::Vector2d> ends = {target->endpoints[0], target->endpoints[1],
+                                       other.endpoints[0], other.endpoints[1]};
+  if (average_plane) {
+    const double wt = static_cast<double>(std::max<uint64_t>(target->inliers, 1));
+    const double wo = static_cast<double>(std::max<uint64_t>(other.inliers, 1));
+    const Eigen::Vector3d pt(target->midpoint().x(), target->midpoint().y(), midHeight(*target));
+    const Eigen::Vector3d po(other.midpoint().x(), other.midpoint().y(), midHeight(other));
+    // Points on each plane near each segment, averaged with the normals.
+    const Eigen::Vector3d qt = pt - target->normal * (target->normal.dot(pt) + target->d);
+    const Eigen::Vector3d qo = po - other.normal * (other.normal.dot(po) + other.d);
+    target->normal = (wt * target->normal + wo * other.normal).normalized();
+    target->d = -target->normal.dot((wt * qt + wo * qo) / (wt + wo));
+  }
+  target->z_min = std::min(target->z_min, other.z_min);
+  target->z_max = std::max(target->z_max, other.z_max);
+  target->observations += other.observations;
+  target->inliers += other.inliers;
+  setExtent(target, ends);
+}
+
+WallLandmark landmarkFromObservation(const WallSegment& wall_in_map) {
+  WallLandmark w;
+  w.normal = wall_in_map.normal;
+  w.d = wall_in_map.d;
+  w.z_min = wall_in_map.z_min;
+  w.z_max = wall_in_map.z_max;
+  w.observations = 1;
+  w.inliers = wall_in_map.inliers;
+  setExtent(&w, {wall_in_map.endpoints[0], wall_in_map.endpoints[1]});
+  return w;
+}
+
+}  // namespace
+
+WallMap::WallMap(const WallAssociationConfig& config) : config_(config) { config_.validate(); }
+
+std::vector<WallMap::Association> WallMap::associate(
+    const std::vector<WallSegment>& observations_in_base, const Pose3& T_map_base) {
+  std::vector<Association> out;
+  out.reserve(observations_in_base.size());
+  for (size_t i = 0; i < observations_in_base.size(); ++i) {
+    const WallLandmark obs =
+        landmarkFromObservation(transformWall(observations_in_base[i], T_map_base));
+    WallLandmark* best = nullptr;
+    double best_dist = std::numeric_limits<double>::infinity();
+    for (auto& [id, lm] : landmarks_) {
+      const double dist = matchDistance(lm, obs, config_);
+      if (dist >= 0.0 && dist < best_dist) {
+        best_dist = dist;
+        best = &lm;
+      }
+    }
+    if (best) {
+      absorb(obs, config_.average_planes, best);
+      out.push_back({static_cast<int>(i), best->id, false});
+    } else {
+      WallLandmark created = obs;
+      created.id = next_id_++;
+      landmarks_.emplace(created.id, created);
+      out.push_back({static_cast<int>(i), created.id, true});
+    }
+  }
+  return out;
+}
+
+std::vector<std::pair<uint32_t, uint32_t>> WallMap::mergeDuplicates() {
+  // The first pair of landmarks that pass the association gates, or false.
+  auto findPair = [this](uint32_t* a_id, uint32_t* b_id) {
+    for (auto a = landmarks_.begin(); a != landmarks_.end(); ++a) {
+      for (auto b = std::next(a); b != landmarks_.end(); ++b) {
+        if (matchDistance(a->second, b->second, config_) < 0.0) continue;
+        *a_id = a->first;
+        *b_id = b->first;
+        return true;
+      }
+    }
+    return false;
+  };
+  std::vector<std::pair<uint32_t, uint32_t>> merges;
+  uint32_t a_id = 0, b_id = 0;
+  while (findPair(&a_id, &b_id)) {
+    // Keep the better observed landmark; on a tie the lower id (a).
+    const bool keep_a = landmarks_.at(a_id).observations >= landmarks_.at(b_id).observations;
+    const uint32_t kept_id = keep_a ? a_id : b_id, removed_id = keep_a ? b_id : a_id;
+    absorb(landmarks_.at(removed_id), config_.average_planes, &landmarks_.at(kept_id));
+    landmarks_.erase(removed_id);
+    for (auto& m : merges) {
+      if (m.second == removed_id) m.second = kept_id;  // earlier merges follow along
+    }
+    merges.emplace_back(removed_id, kept_id);
+  }
+  return merges;
+}
+
+void WallMap::updateLandmarkPlane(uint32_t id, const Eigen::Vector3d& normal, double d) {
+  auto it = landmarks_.find(id);
+  if (it == landmarks_.end() || normal.norm() < 1e-9) return;
+  WallLandmark& w = it->second;
+  const double scale = (normal.dot(w.normal) < 0.0 ? -1.0 : 1.0) / normal.norm();
+  const std::vector<Eigen::Vector2d> ends = {w.endpoints[0], w.endpoints[1]};
+  w.normal = normal * scale;
+  w.d = d * scale;
+  setExtent(&w, ends);
+}
+
+}  // namespace tacs

@@ -1,0 +1,175 @@
+// Wall extraction on synthetic rooms: planes, extents, gap splitting, horizontal planes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/synthetic_walls.h"
+#include "tacs_graphs/common/config.h"
+#include "tacs_graphs/pipeline/pipeline_config.h"
+#include "tacs_graphs/walls/wall_extractor.h"
+
+namespace tacs {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+// The walls whose plane matches (normal within 3 deg, d within 5 cm).
+std::vector<WallSegment> matching(const std::vector<WallSegment>& walls,
+                                  const Eigen::Vector3d& normal, double d) {
+  std::vector<WallSegment> out;
+  for (const auto& w : walls) {
+    if (w.normal.dot(normal) > std::cos(3 * kDeg) && std::abs(w.d - d) < 0.05) out.push_back(w);
+  }
+  return out;
+}
+
+// True if the segment covers [a, b] up to `tol` at both ends (in either order).
+bool spans(const WallSegment& w, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double tol) {
+  const bool same = (w.endpoints[0] - a).norm() < tol && (w.endpoints[1] - b).norm() < tol;
+  const bool swapped = (w.endpoints[0] - b).norm() < tol && (w.endpoints[1] - a).norm() < tol;
+  return same || swapped;
+}
+
+// Box room x in [-3, 5], y in [-2, 4], floor z = -0.8, ceiling z = 1.8, sensor at the origin.
+test::SyntheticScene boxRoomScene() {
+  test::SyntheticScene scene;
+  scene.boxRoom(-3.0, 5.0, -2.0, 4.0, -0.8, 1.8);
+  return scene;
+}
+
+TEST(WallExtraction, BoxRoomWallsHavePlanesFacingTheSensorAndTheirExtents) {
+  const auto scene = boxRoomScene();
+  const WallExtractor extractor{WallExtractionConfig{}};
+  const auto result = extractor.extract(scene.cloud);
+  EXPECT_EQ(result.input_points, scene.cloud.size());
+  ASSERT_EQ(result.walls.size(), 4u);
+  struct Expected {
+    Eigen::Vector3d n;
+    double d;
+    Eigen::Vector2d a, b;
+  };
+  const Expected expected[] = {{{1, 0, 0}, 3.0, {-3, -2}, {-3, 4}},
+                               {{-1, 0, 0}, 5.0, {5, -2}, {5, 4}},
+                               {{0, 1, 0}, 2.0, {-3, -2}, {5, -2}},
+                               {{0, -1, 0}, 4.0, {-3, 4}, {5, 4}}};
+  for (const auto& e : expected) {
+    SCOPED_TRACE(e.n.transpose());
+    const auto found = matching(result.walls, e.n, e.d);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_GE(found[0].d, 0.0);
+    EXPECT_NEAR(found[0].normal.norm(), 1.0, 1e-9);
+    EXPECT_TRUE(spans(found[0], e.a, e.b, 0.2))
+        << found[0].endpoints[0].transpose() << " / " << found[0].endpoints[1].transpose();
+    EXPECT_NEAR(found[0].z_min, -0.8, 0.15);
+    EXPECT_NEAR(found[0].z_max, 1.8, 0.15);
+    EXPECT_GT(found[0].inliers, 500u);
+    // Endpoints are ordered along the wall axis z x n.
+    EXPECT_GT(wallAxis(found[0].normal).dot(found[0].endpoints[1] - found[0].endpoints[0]), 0.0);
+  }
+}
+
+TEST(WallExtraction, FloorAndCeilingAreReportedAsHorizontal) {
+  const auto scene = boxRoomScene();
+  const auto result = WallExtractor(WallExtractionConfig{}).extract(scene.cloud);
+  ASSERT_GE(result.horizontal.size(), 2u);
+  const auto floor = matching(result.horizontal, {0, 0, 1}, 0.8);
+  const auto ceiling = matching(result.horizontal, {0, 0, -1}, 1.8);
+  ASSERT_EQ(floor.size(), 1u);
+  ASSERT_EQ(ceiling.size(), 1u);
+  EXPECT_NEAR(floor[0].endpoints[0].x(), -3.0, 0.15);
+  EXPECT_NEAR(floor[0].endpoints[1].y(), 4.0, 0.15);
+  for (const auto& w : result.walls) EXPECT_LT(std::abs(w.normal.z()), 0.1);
+}
+
+TEST(WallExtraction, CollinearWallsFiveMetresApartAreSeparateSegments) {
+  test::SyntheticScene scene;
+  scene.wall({-7, 3}, {-1, 3}, -0.8, 1.5);
+  scene.wall({4, 3}, {9, 3}, -0.8, 1.5);
+  scene.slab(-7, 9, -3, 3, -0.8);
+  WallExtractionConfig cfg;
+  const auto result = WallExtractor(cfg).extract(scene.cloud);
+  const auto found = matching(result.walls, {0, -1, 0}, 3.0);
+  ASSERT_EQ(found.size(), 2u);
+  const bool first_left = found[0].midpoint().x() < found[1].midpoint().x();
+  const WallSegment& left = first_left ? found[0] : found[1];
+  const WallSegment& right = first_left ? found[1] : found[0];
+  EXPECT_TRUE(spans(left, {-7, 3}, {-1, 3}, 0.2));
+  EXPECT_TRUE(spans(right, {4, 3}, {9, 3}, 0.2));
+  // With a max_gap larger than the gap, the two become one segment.
+  cfg.max_gap = 6.0;
+  const auto joined = matching(WallExtractor(cfg).extract(scene.cloud).walls, {0, -1, 0}, 3.0);
+  ASSERT_EQ(joined.size(), 1u);
+  EXPECT_NEAR(joined[0].length(), 16.0, 0.3);
+}
+
+TEST(WallExtraction, TwoRoomsWithADoorGiveTwoSegmentsOnTheDoorWall) {
+  test::SyntheticScene scene;
+  scene.twoRoomsWithDoor();
+  // Sensor in the left room at (2, 2.5, 0.6): express the cloud relative to it.
+  scene.transform(poseFromXyzRpy(-2.0, -2.5, -0.6, 0, 0, 0));
+  const auto result = WallExtractor(WallExtractionConfig{}).extract(scene.cloud);
+  const auto door_wall = matching(result.walls, {-1, 0, 0}, 3.0);
+  ASSERT_EQ(door_wall.size(), 2u);
+  double covered = 0.0;
+  for (const auto& w : door_wall) covered += w.length();
+  EXPECT_NEAR(covered, 3.0, 0.3);  // 1 m + 2 m, the door is left out
+}
+
+TEST(WallExtraction, RotatedRoomGivesRotatedNormals) {
+  auto scene = boxRoomScene();
+  const double yaw = 30 * kDeg;
+  scene.transform(poseFromXyzRpy(0, 0, 0, 0, 0, yaw));
+  const auto result = WallExtractor(WallExtractionConfig{}).extract(scene.cloud);
+  ASSERT_EQ(result.walls.size(), 4u);
+  const Eigen::Vector3d nx(std::cos(yaw), std::sin(yaw), 0.0);
+  EXPECT_EQ(matching(result.walls, nx, 3.0).size(), 1u);
+  EXPECT_EQ(matching(result.walls, -nx, 5.0).size(), 1u);
+}
+
+TEST(WallExtraction, TinyPiecesAreRejectedAndOutputIsDeterministic) {
+  test::SyntheticScene scene;
+  scene.wall({-2, 3}, {2, 3}, -0.5, 1.5);
+  scene.wall({4, -1}, {4, -0.6}, -0.5, 1.5);  // 0.4 m: below min_wall_length
+  scene.slab(-3, 5, -3, 3, -0.5);
+  const WallExtractor extractor{WallExtractionConfig{}};
+  const auto a = extractor.extract(scene.cloud);
+  const auto b = extractor.extract(scene.cloud);
+  ASSERT_EQ(a.walls.size(), 1u);
+  EXPECT_NEAR(a.walls[0].length(), 4.0, 0.2);
+  ASSERT_EQ(b.walls.size(), a.walls.size());
+  EXPECT_EQ(a.walls[0].inliers, b.walls[0].inliers);
+  EXPECT_EQ(a.walls[0].normal, b.walls[0].normal);
+}
+
+TEST(WallExtraction, ConfigValidationNamesTheField) {
+  WallExtractionConfig cfg;
+  cfg.max_gap = -1.0;
+  try {
+    cfg.validate();
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("walls.extraction.max_gap"), std::string::npos);
+  }
+  EXPECT_THROW(WallExtractor{cfg}, ConfigError);
+  EXPECT_NO_THROW(WallExtractionConfig{}.validate());
+}
+
+TEST(WallExtraction, PipelineConfigReadsTheWallsSection) {
+  const auto j = parseYamlAsJson(
+      "walls:\n  extraction:\n    max_gap: 0.8\n  association:\n    max_gap: 0.4\n"
+      "  axes:\n    window_deg: 5.0\n    typo: 1\n",
+      "test.yaml");
+  PipelineConfig cfg;
+  std::vector<std::string> unknown;
+  configFromJson(j, "test.yaml", &cfg, &unknown);
+  EXPECT_DOUBLE_EQ(cfg.walls.extraction.max_gap, 0.8);
+  EXPECT_DOUBLE_EQ(cfg.walls.association.max_gap, 0.4);
+  EXPECT_DOUBLE_EQ(cfg.walls.axes.window_deg, 5.0);
+  ASSERT_EQ(unknown.size(), 1u);
+  EXPECT_EQ(unknown[0], "walls.axes.typo");
+  const auto bad = parseYamlAsJson("walls:\n  association:\n    max_plane_distance: -1\n", "b");
+  EXPECT_THROW(configFromJson(bad, "b", &cfg, &unknown), ConfigError);
+}
+
+}  // namespace
+}  // namespace tacs

@@ -1,0 +1,181 @@
+// Association of wall observations to map landmarks, extent growth and duplicate merging.
+#include <gtest/gtest.h>
+#include <pcl/common/transforms.h>
+
+#include <cmath>
+#include <random>
+
+#include "common/synthetic_walls.h"
+#include "tacs_graphs/common/config.h"
+#include "tacs_graphs/walls/dominant_axes.h"
+#include "tacs_graphs/walls/wall_extractor.h"
+#include "tacs_graphs/walls/wall_map.h"
+
+namespace tacs {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+// A vertical wall observation on the line through a and b, normal facing the origin.
+WallSegment observation(const Eigen::Vector2d& a, const Eigen::Vector2d& b, uint32_t inliers) {
+  WallSegment w;
+  const Eigen::Vector2d dir = (b - a).normalized();
+  w.normal = Eigen::Vector3d(-dir.y(), dir.x(), 0.0);
+  w.d = -w.normal.head<2>().dot(a);
+  if (w.d < 0.0) {
+    w.normal = -w.normal;
+    w.d = -w.d;
+  }
+  w.endpoints[0] = a;
+  w.endpoints[1] = b;
+  w.z_min = 0.0;
+  w.z_max = 2.5;
+  w.inliers = inliers;
+  return w;
+}
+
+TEST(WallMap, ObservationsMoveToTheMapFrameAndGrowOneLandmark) {
+  WallMap map;
+  // Robot at (10, 5) turned by 90 deg sees a wall 2 m ahead (base x = 2) from y -1..1.
+  const Pose3 T = poseFromXyzRpy(10, 5, 0, 0, 0, 90 * kDeg);
+  const auto first = map.associate({observation({2, -1}, {2, 1}, 300)}, T);
+  ASSERT_EQ(first.size(), 1u);
+  EXPECT_TRUE(first[0].created);
+  const WallLandmark& lm = map.landmarks().at(first[0].landmark_id);
+  EXPECT_NEAR(lm.normal.y(), -1.0, 1e-9);  // faces back towards the robot
+  EXPECT_NEAR(lm.d, 7.0, 1e-9);            // the map plane y = 7
+  EXPECT_NEAR(lm.length(), 2.0, 1e-9);
+  // Moved 1.5 m along the wall, the robot sees an overlapping piece: same landmark, longer.
+  const Pose3 T2 = poseFromXyzRpy(11.5, 5, 0, 0, 0, 90 * kDeg);
+  const auto second = map.associate({observation({2, -1}, {2, 1}, 300)}, T2);
+  EXPECT_FALSE(second[0].created);
+  EXPECT_EQ(second[0].landmark_id, first[0].landmark_id);
+  ASSERT_EQ(map.landmarks().size(), 1u);
+  EXPECT_NEAR(map.landmarks().begin()->second.length(), 3.5, 1e-6);
+  EXPECT_EQ(map.landmarks().begin()->second.observations, 2u);
+  // The opposite face (normal +y) and a parallel wall 1 m behind are other landmarks.
+  const auto third = map.associate({observation({-2, -1}, {-2, 1}, 300)},
+                                   poseFromXyzRpy(10, 9, 0, 0, 0, 90 * kDeg));
+  EXPECT_TRUE(third[0].created);
+  const auto fourth = map.associate({observation({3, -1}, {3, 1}, 300)}, T);
+  EXPECT_TRUE(fourth[0].created);
+  EXPECT_EQ(map.landmarks().size(), 3u);
+}
+
+TEST(WallMap, CollinearWallsBeyondTheGapStayApartAndBridgedPiecesMerge) {
+  WallMap map;
+  const Pose3 I = Pose3::Identity();
+  const auto a = map.associate({observation({-6, 3}, {-2, 3}, 200)}, I);
+  const auto b = map.associate({observation({2, 3}, {6, 3}, 200)}, I);
+  EXPECT_TRUE(b[0].created);
+  EXPECT_EQ(map.landmarks().size(), 2u);
+  EXPECT_TRUE(map.mergeDuplicates().empty());  // 4 m apart: two walls
+  // A later view covers the gap: it joins one of them, whose extent now touches the other.
+  map.associate({observation({-2.2, 3}, {2.2, 3}, 200)}, I);
+  ASSERT_EQ(map.landmarks().size(), 2u);
+  const auto merges = map.mergeDuplicates();
+  ASSERT_EQ(merges.size(), 1u);
+  ASSERT_EQ(map.landmarks().size(), 1u);
+  const WallLandmark& kept = map.landmarks().begin()->second;
+  EXPECT_EQ(merges[0].second, kept.id);
+  EXPECT_EQ(merges[0].first, kept.id == a[0].landmark_id ? b[0].landmark_id : a[0].landmark_id);
+  EXPECT_NEAR(kept.length(), 12.0, 1e-6);
+  EXPECT_EQ(kept.observations, 3u);
+}
+
+TEST(WallMap, MergeChainsReportSurvivingIds) {
+  WallAssociationConfig cfg;
+  cfg.max_gap = 0.5;
+  WallMap map(cfg);
+  const Pose3 I = Pose3::Identity();
+  map.associate({observation({0, 2}, {2, 2}, 100)}, I);  // id 0
+  map.associate({observation({3, 2}, {5, 2}, 100)}, I);  // id 1
+  map.associate({observation({6, 2}, {8, 2}, 100)}, I);  // id 2
+  ASSERT_EQ(map.landmarks().size(), 3u);
+  // Optimisation moves the planes slightly; the extents are then widened by one observation each.
+  map.associate({observation({1.5, 2}, {3.2, 2}, 100)}, I);
+  map.associate({observation({4.8, 2}, {6.2, 2}, 100)}, I);
+  const auto merges = map.mergeDuplicates();
+  ASSERT_EQ(map.landmarks().size(), 1u);
+  const uint32_t kept = map.landmarks().begin()->first;
+  EXPECT_EQ(merges.size(), 2u);
+  for (const auto& m : merges) {
+    EXPECT_EQ(m.second, kept);
+    EXPECT_NE(m.first, kept);
+  }
+}
+
+TEST(WallMap, UpdateLandmarkPlaneMovesTheExtentAndKeepsTheFacing) {
+  WallMap map;
+  const auto a = map.associate({observation({-2, 3}, {2, 3}, 100)}, Pose3::Identity());
+  const uint32_t id = a[0].landmark_id;
+  // Given with the opposite sign: plane y = 3.2 as (0, 1, 0), d = -3.2.
+  map.updateLandmarkPlane(id, {0, 1, 0}, -3.2);
+  const WallLandmark& lm = map.landmarks().at(id);
+  EXPECT_NEAR(lm.normal.y(), -1.0, 1e-12);
+  EXPECT_NEAR(lm.d, 3.2, 1e-12);
+  EXPECT_NEAR(lm.endpoints[0].y(), 3.2, 1e-12);
+  EXPECT_NEAR(lm.endpoints[1].y(), 3.2, 1e-12);
+  EXPECT_NEAR(lm.length(), 4.0, 1e-12);
+  map.updateLandmarkPlane(999, {1, 0, 0}, 0.0);  // unknown id: ignored
+  EXPECT_EQ(map.landmarks().size(), 1u);
+  WallAssociationConfig bad;
+  bad.max_plane_distance = 0.0;
+  EXPECT_THROW(WallMap{bad}, ConfigError);
+}
+
+TEST(WallMap, KeyframesWithNoisyPosesGiveOneLandmarkPerWallFace) {
+  test::SyntheticScene scene;
+  scene.spacing = 0.07;
+  scene.twoRoomsWithDoor();
+  WallExtractionConfig ecfg;
+  ecfg.max_range = 5.0;  // each keyframe sees only part of the walls
+  const WallExtractor extractor(ecfg);
+  WallMap map;
+  std::mt19937 rng(3);
+  std::normal_distribution<double> pos_noise(0.0, 0.03), yaw_noise(0.0, 0.5 * kDeg);
+  const double path[][3] = {{1, 1, 0.3},   {2.5, 2, 0.6}, {4, 3, 0.0},  {4.5, 1.5, 0.0},
+                            {5.5, 1.5, 0}, {7, 2, 0.4},   {9, 3, 1.2},  {8, 1, -2.0},
+                            {6, 2.5, 3.0}, {3, 2.5, 3.1}, {1.5, 3, 2.0}};
+  for (const auto& kf : path) {
+    const Pose3 T_true = poseFromXyzRpy(kf[0], kf[1], 0.5, 0, 0, kf[2]);
+    PointCloud cloud;
+    pcl::transformPointCloud(scene.cloud, cloud, T_true.inverse().matrix().cast<float>());
+    const auto walls = extractor.extract(cloud).walls;
+    const Pose3 T_noisy = poseFromXyzRpy(kf[0] + pos_noise(rng), kf[1] + pos_noise(rng), 0.5, 0, 0,
+                                         kf[2] + yaw_noise(rng));
+    map.associate(walls, T_noisy);
+    map.mergeDuplicates();
+  }
+  // Faces: x=0 (+x), x=10 (-x), y=0 (+y), y=4 (-y), partition seen from the left (-x) and from
+  // the right (+x), each in two pieces split by the door.
+  struct Face {
+    Eigen::Vector2d n;
+    double offset;  // n.p + offset = 0
+    int pieces;
+  };
+  const Face faces[] = {{{1, 0}, 0, 1},  {{-1, 0}, 10, 1}, {{0, 1}, 0, 1},
+                        {{0, -1}, 4, 1}, {{-1, 0}, 5, 2},  {{1, 0}, -5, 2}};
+  size_t expected = 0;
+  for (const auto& f : faces) {
+    SCOPED_TRACE(f.n.transpose());
+    int found = 0;
+    for (const auto& [id, lm] : map.landmarks()) {
+      if (lm.normal.head<2>().dot(f.n) > 0.99 && std::abs(lm.d - f.offset) < 0.15) ++found;
+    }
+    EXPECT_EQ(found, f.pieces);
+    expected += f.pieces;
+  }
+  EXPECT_EQ(map.landmarks().size(), expected);
+  // No wall held twice: no two landmarks pass the association gates together.
+  EXPECT_TRUE(map.mergeDuplicates().empty());
+  // Every landmark was seen from several keyframes.
+  for (const auto& [id, lm] : map.landmarks()) EXPECT_GE(lm.observations, 2u) << id;
+  // The building axes of the map are the map axes here.
+  const DominantAxes axes = estimateDominantAxes(map);
+  EXPECT_TRUE(axes.valid);
+  EXPECT_NEAR(axes.yaw, 0.0, 1.5 * kDeg);
+}
+
+}  // namespace
+}  // namespace tacs
