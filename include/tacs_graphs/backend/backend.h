@@ -1,0 +1,70 @@
+// The backend: owner of the scene graph (DESIGN.md). It turns keyframes, wall observations, room
+// observations and loop closures into factor-graph measurements, associates walls to landmarks,
+// optimises on schedule and exports the optimised scene graph and the map->odom correction.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "tacs_graphs/backend/factor_graph.h"
+#include "tacs_graphs/scene_graph/scene_graph.h"
+#include "tacs_graphs/walls/wall_map.h"
+
+namespace tacs {
+
+class Backend {
+ public:
+  using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+  Backend(const BackendConfig& config, const WallAssociationConfig& association);
+
+  /// A keyframe from the odometry: its odom-frame pose and the information of the motion since the
+  /// previous keyframe. Its map pose starts from the current map->odom correction.
+  void addKeyframe(uint32_t id, double stamp, const Pose3& T_odom_base,
+                   const Matrix6d& information);
+  bool hasKeyframe(uint32_t id) const { return keyframes_.count(id) > 0; }
+
+  /// Walls seen from keyframe `id` (base frame). Returns the landmark id of each observation.
+  std::vector<uint32_t> addWallObservations(uint32_t keyframe_id,
+                                            const std::vector<WallSegment>& walls);
+
+  /// A loop closure: the pose of keyframe `to` in the frame of keyframe `from`.
+  void addLoopClosure(uint32_t from, uint32_t to, const Pose3& T_from_to,
+                      const Matrix6d& information, double score);
+
+  /// Optimises when the schedule says so (every `optimize_every_keyframes` keyframes, and after a
+  /// loop closure). Returns the report of the optimisation, if one ran.
+  std::optional<OptimizationReport> optimizeIfDue();
+  /// Optimises now, then folds duplicate walls.
+  OptimizationReport optimize();
+
+  /// Optimised pose of a keyframe in the map frame.
+  Pose3 keyframePose(uint32_t id) const { return graph_.keyframePose(id); }
+  /// T_map_odom from the latest keyframe.
+  Pose3 mapToOdom() const;
+  SceneGraph sceneGraph() const;
+  const WallMap& wallMap() const { return wall_map_; }
+  /// Total optimisation time so far (t_FGO) and the number of optimisations.
+  double totalOptimizationMs() const { return total_optimization_ms_; }
+  int optimizations() const { return optimizations_; }
+
+ private:
+  struct KeyframeInfo {
+    double stamp;
+    Pose3 T_odom_base;
+  };
+
+  BackendConfig config_;
+  FactorGraph graph_;
+  WallMap wall_map_;
+  std::map<uint32_t, KeyframeInfo> keyframes_;
+  std::optional<uint32_t> last_keyframe_;
+  std::vector<LoopEdge> loops_;
+  int keyframes_since_optimization_ = 0;
+  bool loop_pending_ = false;
+  double total_optimization_ms_ = 0.0;
+  int optimizations_ = 0;
+};
+
+}  // namespace tacs
