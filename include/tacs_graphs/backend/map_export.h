@@ -1,0 +1,46 @@
+// The map products of a run: the point-cloud map (map.pcd), the OctoMap (map.bt) and the top-down
+// picture of the scene graph (topdown.png), built from keyframe clouds and optimised poses.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "tacs_graphs/common/types.h"
+#include "tacs_graphs/scene_graph/scene_graph.h"
+
+namespace tacs {
+
+struct MapExportConfig {
+  double cloud_voxel_m = 0.1;          // voxel size of map.pcd and /tacs/map_points [m]
+  double octomap_resolution_m = 0.1;   // leaf size of map.bt [m]
+  double octomap_max_range_m = 15.0;   // rays longer than this only mark free space so far [m]
+  double topdown_resolution_m = 0.05;  // metres per pixel of topdown.png
+
+  template <class V>
+  void visit(V& v) {
+    v("cloud_voxel_m", cloud_voxel_m);
+    v("octomap_resolution_m", octomap_resolution_m);
+    v("octomap_max_range_m", octomap_max_range_m);
+    v("topdown_resolution_m", topdown_resolution_m);
+  }
+  void validate() const;
+};
+
+/// Keyframe clouds (base frame) by keyframe id.
+using KeyframeClouds = std::map<uint32_t, PointCloud::ConstPtr>;
+
+/// All keyframe clouds moved into the map frame with the scene graph's poses, voxel-downsampled.
+PointCloud buildMapCloud(const SceneGraph& graph, const KeyframeClouds& clouds, double voxel_m);
+
+/// Builds an OctoMap by ray casting every keyframe cloud from its sensor origin and writes it as a
+/// binary .bt file through a temporary file (never half-written). Throws std::runtime_error.
+void writeOctomap(const std::string& path, const SceneGraph& graph, const KeyframeClouds& clouds,
+                  const MapExportConfig& config);
+
+/// Writes a .pcd (binary) through a temporary file. Throws std::runtime_error.
+void writePcdAtomically(const std::string& path, const PointCloud& cloud);
+
+/// Voxel-grid downsampling by hashing (one centroid per voxel), safe for large extents.
+PointCloud voxelDownsample(const PointCloud& cloud, double voxel_m);
+
+}  // namespace tacs

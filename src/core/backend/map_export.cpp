@@ -1,0 +1,107 @@
+#include "tacs_graphs/backend/map_export.h"
+
+#include <octomap/octomap.h>
+#include <pcl/common/transforms.h>
+#include <pcl/io/pcd_io.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "tacs_graphs/common/config.h"
+
+namespace tacs {
+
+void MapExportConfig::validate() const {
+  requireConfig(cloud_voxel_m > 0, "map_export.cloud_voxel_m", "must be > 0");
+  requireConfig(octomap_resolution_m > 0, "map_export.octomap_resolution_m", "must be > 0");
+  requireConfig(octomap_max_range_m > 0, "map_export.octomap_max_range_m", "must be > 0");
+  requireConfig(topdown_resolution_m > 0, "map_export.topdown_resolution_m", "must be > 0");
+}
+
+PointCloud voxelDownsample(const PointCloud& cloud, double voxel_m) {
+  struct Accumulator {
+    Eigen::Vector4d sum = Eigen::Vector4d::Zero();  // x y z intensity
+    int count = 0;
+  };
+  std::unordered_map<uint64_t, Accumulator> voxels;
+  voxels.reserve(cloud.size() / 4 + 1);
+  const double inv = 1.0 / voxel_m;
+  for (const auto& p : cloud) {
+    // 21 bits per axis: +-1 million voxels, 100 km at 0.1 m.
+    const auto key = [&](float v) {
+      return static_cast<uint64_t>(static_cast<int64_t>(std::floor(v * inv)) + (1 << 20)) &
+             0x1FFFFF;
+    };
+    const uint64_t k = key(p.x) | (key(p.y) << 21) | (key(p.z) << 42);
+    Accumulator& a = voxels[k];
+    a.sum += Eigen::Vector4d(p.x, p.y, p.z, p.intensity);
+    ++a.count;
+  }
+  PointCloud out;
+  out.reserve(voxels.size());
+  for (const auto& [k, a] : voxels) {
+    const Eigen::Vector4d m = a.sum / a.count;
+    pcl::PointXYZI q;
+    q.x = static_cast<float>(m[0]);
+    q.y = static_cast<float>(m[1]);
+    q.z = static_cast<float>(m[2]);
+    q.intensity = static_cast<float>(m[3]);
+    out.push_back(q);
+  }
+  return out;
+}
+
+PointCloud buildMapCloud(const SceneGraph& graph, const KeyframeClouds& clouds, double voxel_m) {
+  PointCloud all;
+  for (const auto& [id, cloud] : clouds) {
+    const auto it = graph.keyframes.find(id);
+    if (it == graph.keyframes.end() || !cloud) continue;
+    PointCloud moved;
+    pcl::transformPointCloud(*cloud, moved, it->second.pose().matrix().cast<float>());
+    all += moved;
+  }
+  return voxelDownsample(all, voxel_m);
+}
+
+void writeOctomap(const std::string& path, const SceneGraph& graph, const KeyframeClouds& clouds,
+                  const MapExportConfig& config) {
+  octomap::OcTree tree(config.octomap_resolution_m);
+  for (const auto& [id, cloud] : clouds) {
+    const auto it = graph.keyframes.find(id);
+    if (it == graph.keyframes.end() || !cloud) continue;
+    const Pose3 pose = it->second.pose();
+    octomap::Pointcloud scan;
+    scan.reserve(cloud->size());
+    for (const auto& p : *cloud) {
+      const Eigen::Vector3d q = pose * Eigen::Vector3d(p.x, p.y, p.z);
+      scan.push_back(static_cast<float>(q.x()), static_cast<float>(q.y()),
+                     static_cast<float>(q.z()));
+    }
+    const Eigen::Vector3d o = pose.translation();
+    tree.insertPointCloud(scan, octomap::point3d(o.x(), o.y(), o.z()), config.octomap_max_range_m,
+                          /*lazy_eval=*/true);
+  }
+  tree.updateInnerOccupancy();
+  const std::string tmp = path + ".tmp";
+  if (!tree.writeBinary(tmp)) throw std::runtime_error(path + ": cannot write OctoMap");
+  std::filesystem::rename(tmp, path);
+}
+
+void writePcdAtomically(const std::string& path, const PointCloud& cloud) {
+  const std::string tmp = path + ".tmp.pcd";
+  if (cloud.empty()) {
+    // PCL refuses to write an empty cloud; an empty map is still a valid, readable result.
+    std::ofstream(tmp)
+        << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\n"
+           "TYPE F F F F\nCOUNT 1 1 1 1\nWIDTH 0\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\n"
+           "POINTS 0\nDATA ascii\n";
+  } else if (pcl::io::savePCDFileBinary(tmp, cloud) != 0) {
+    throw std::runtime_error(path + ": cannot write point cloud");
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace tacs

@@ -1,0 +1,82 @@
+#include <gtest/gtest.h>
+#include <octomap/octomap.h>
+#include <pcl/io/pcd_io.h>
+
+#include <cstdio>
+
+#include "tacs_graphs/backend/map_export.h"
+
+namespace tacs {
+namespace {
+
+PointCloud::Ptr wallPatch() {
+  // A 2 x 2 m patch of the plane x = 3 in the keyframe frame, 5 cm spacing.
+  auto cloud = std::make_shared<PointCloud>();
+  for (double y = -1; y <= 1; y += 0.05) {
+    for (double z = 0; z <= 2; z += 0.05) {
+      pcl::PointXYZI p;
+      p.x = 3.0f;
+      p.y = static_cast<float>(y);
+      p.z = static_cast<float>(z);
+      cloud->push_back(p);
+    }
+  }
+  return cloud;
+}
+
+SceneGraph twoKeyframes() {
+  SceneGraph g;
+  g.keyframes[0].id = 0;
+  g.keyframes[1].id = 1;
+  g.keyframes[1].setPose(poseFromXyzRpy(0, 0, 0, 0, 0, M_PI));  // looking the other way
+  return g;
+}
+
+TEST(MapExport, VoxelDownsampleKeepsOnePointPerVoxel) {
+  const PointCloud down = voxelDownsample(*wallPatch(), 0.2);
+  // 41 x 41 points on a 2 x 2 m patch -> about 11 x 11 voxels of 0.2 m.
+  EXPECT_GE(down.size(), 100u);
+  EXPECT_LE(down.size(), 144u);
+}
+
+TEST(MapExport, MapCloudMovesEachKeyframeByItsPose) {
+  KeyframeClouds clouds = {{0, wallPatch()}, {1, wallPatch()}, {7, wallPatch()}};  // 7: no pose
+  const PointCloud map = buildMapCloud(twoKeyframes(), clouds, 0.1);
+  int at_plus3 = 0, at_minus3 = 0;
+  for (const auto& p : map) {
+    if (std::abs(p.x - 3.0f) < 0.06f) ++at_plus3;
+    if (std::abs(p.x + 3.0f) < 0.06f) ++at_minus3;
+  }
+  EXPECT_GT(at_plus3, 100);
+  EXPECT_GT(at_minus3, 100);
+  EXPECT_EQ(at_plus3 + at_minus3, static_cast<int>(map.size()));
+}
+
+TEST(MapExport, OctomapMarksTheWallOccupiedAndTheWayFree) {
+  const std::string path = ::testing::TempDir() + "/map_export_test.bt";
+  MapExportConfig config;
+  writeOctomap(path, twoKeyframes(), {{0, wallPatch()}}, config);
+  octomap::OcTree tree(path);
+  const auto* wall = tree.search(3.0, 0.0, 1.0);
+  ASSERT_NE(wall, nullptr);
+  EXPECT_TRUE(tree.isNodeOccupied(wall));
+  const auto* between = tree.search(1.5, 0.0, 0.5);
+  ASSERT_NE(between, nullptr);
+  EXPECT_FALSE(tree.isNodeOccupied(between));
+  std::remove(path.c_str());
+}
+
+TEST(MapExport, PcdRoundTripAndEmptyMap) {
+  const std::string path = ::testing::TempDir() + "/map_export_test.pcd";
+  writePcdAtomically(path, *wallPatch());
+  PointCloud back;
+  ASSERT_EQ(pcl::io::loadPCDFile(path, back), 0);
+  EXPECT_EQ(back.size(), wallPatch()->size());
+  writePcdAtomically(path, PointCloud());
+  ASSERT_EQ(pcl::io::loadPCDFile(path, back), 0);
+  EXPECT_TRUE(back.empty());
+  std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace tacs
