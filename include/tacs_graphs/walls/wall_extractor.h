@@ -41,7 +41,7 @@ struct WallExtractionConfig {
   /// Stop when the best remaining plane has fewer inliers than this.
   int min_plane_inliers = 40;
   /// A plane is vertical when its normal is within this angle of the horizontal plane (deg).
-  double vertical_tolerance_deg = 10.0;
+  double vertical_tolerance_deg = 5.0;
   /// A plane is horizontal when its normal is within this angle of the z axis (deg).
   double horizontal_tolerance_deg = 10.0;
   /// Inliers of a vertical plane further apart than this along the wall start a new segment (m).
@@ -50,8 +50,10 @@ struct WallExtractionConfig {
   int min_wall_inliers = 60;
   /// ...this length (m)...
   double min_wall_length = 0.6;
-  /// ...and this height range (m).
+  /// ...this height range (m)...
   double min_wall_height = 0.3;
+  /// ...and inliers along at least this share of its length (bins of max(0.1, 2 voxel_size) m).
+  double min_coverage = 0.6;
   /// Horizontal planes with fewer inliers are not reported (their points are still removed).
   int min_horizontal_inliers = 200;
   /// Seed of the random sampling.
@@ -76,6 +78,7 @@ struct WallExtractionConfig {
     v("min_wall_inliers", min_wall_inliers);
     v("min_wall_length", min_wall_length);
     v("min_wall_height", min_wall_height);
+    v("min_coverage", min_coverage);
     v("min_horizontal_inliers", min_horizontal_inliers);
     v("seed", seed);
   }

@@ -34,6 +34,8 @@ void WallExtractionConfig::validate() const {
   requireConfig(min_wall_inliers >= 3, p + "min_wall_inliers", "must be >= 3");
   requireConfig(min_wall_length >= 0.0, p + "min_wall_length", "must be >= 0");
   requireConfig(min_wall_height >= 0.0, p + "min_wall_height", "must be >= 0");
+  requireConfig(min_coverage >= 0.0 && min_coverage <= 1.0, p + "min_coverage",
+                "must be in [0, 1]");
   requireConfig(min_horizontal_inliers >= 3, p + "min_horizontal_inliers", "must be >= 3");
 }
 
@@ -198,6 +200,8 @@ bool makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
   if (run.size() < static_cast<size_t>(cfg.min_wall_inliers)) return false;
   Eigen::Vector3d c;
   Plane pl = fitPlane(pts, run, &c);
+  // The run's own plane must be vertical too (a model can pass the test thanks to other runs).
+  if (std::abs(pl.n.z()) > std::sin(cfg.vertical_tolerance_deg * M_PI / 180.0)) return false;
   faceViewpoint(viewpoint, false, &pl);
   const Eigen::Vector2d axis = wallAxis(pl.n);
   double t_min = std::numeric_limits<double>::infinity(), t_max = -t_min;
@@ -211,6 +215,18 @@ bool makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
     z_max = std::max(z_max, p.z());
   }
   if (t_max - t_min < cfg.min_wall_length || z_max - z_min < cfg.min_wall_height) return false;
+  // Share of the length with inliers: a plane threading through scattered clutter covers little.
+  const double bin = std::max(0.1, 2.0 * cfg.voxel_size);
+  std::vector<uint8_t> occupied(static_cast<size_t>((t_max - t_min) / bin) + 1, 0);
+  for (uint32_t i : run) {
+    const double t = axis.dot(pts[i].head<2>().cast<double>() - c.head<2>());
+    occupied[static_cast<size_t>((t - t_min) / bin)] = 1;
+  }
+  size_t filled = 0;
+  for (uint8_t o : occupied) filled += o;
+  if (static_cast<double>(filled) < cfg.min_coverage * static_cast<double>(occupied.size())) {
+    return false;
+  }
   const double z_mid = 0.5 * (z_min + z_max);
   wall->normal = pl.n;
   wall->d = pl.d;
