@@ -1,0 +1,139 @@
+#include "tacs_graphs/sim/robot_path.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "tacs_graphs/sim/sim_random.h"
+
+namespace tacs::sim {
+namespace {
+
+constexpr double kStep = 0.02;  // [m] sampling of the path
+constexpr double kPi = 3.14159265358979323846;
+
+/// Height of the highest floor under (x, y), false when there is none (a void).
+bool floorUnder(const World& world, const Eigen::Vector2d& p, double* z) {
+  bool found = false;
+  for (const auto& f : world.floors) {
+    if ((!found || f.z > *z) && pointInPolygon(f.polygon, p)) *z = f.z, found = true;
+  }
+  return found;
+}
+
+}  // namespace
+
+RobotPath::RobotPath(const World& world, uint64_t seed, const std::string& name) {
+  const TrajectorySpec& spec = world.trajectory;
+  jitter_rad_ = spec.jitter_deg * kPi / 180.0;
+  jitter_z_ = spec.jitter_z_m;
+
+  // Waypoint list over all laps; between laps the robot drives back to the first waypoint.
+  std::vector<Eigen::Vector3d> wps;
+  for (int lap = 0; lap < spec.laps; ++lap) {
+    for (const auto& w : spec.waypoints) {
+      if (wps.empty() || (w.head<2>() - wps.back().head<2>()).norm() > 1e-9) wps.push_back(w);
+    }
+  }
+  for (size_t i = 0; i < spec.waypoints.size(); ++i) {
+    double z;
+    if (!floorUnder(world, spec.waypoints[i].head<2>(), &z)) {
+      throw WorldError(name + ": trajectory.waypoints[" + std::to_string(i) +
+                       "]: not above any floor");
+    }
+  }
+
+  // Dense samples of the polyline (z: given, else NaN to be filled from the floor).
+  std::vector<Eigen::Vector3d> dense;
+  for (size_t i = 0; i + 1 < wps.size(); ++i) {
+    const double len = (wps[i + 1].head<2>() - wps[i].head<2>()).norm();
+    const int n = std::max(1, static_cast<int>(std::ceil(len / kStep)));
+    for (int k = 0; k < n; ++k) dense.push_back(wps[i] + (wps[i + 1] - wps[i]) * (double(k) / n));
+  }
+  dense.push_back(wps.back());
+
+  // Round the corners: moving average with a window that shrinks at both ends so the path still
+  // starts and ends at the first and last waypoints.
+  const int half = static_cast<int>(std::round(spec.corner_radius_m / kStep));
+  const int n = static_cast<int>(dense.size());
+  std::vector<Eigen::Vector2d> prefix(n + 1, Eigen::Vector2d::Zero());
+  for (int i = 0; i < n; ++i) prefix[i + 1] = prefix[i] + dense[i].head<2>();
+  samples_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const int w = std::min({half, i, n - 1 - i});
+    const Eigen::Vector2d xy = (prefix[i + w + 1] - prefix[i - w]) / (2 * w + 1);
+    double z = dense[i].z();
+    if (!floorUnder(world, xy, &z) && std::isnan(dense[i].z())) {
+      std::ostringstream msg;
+      msg << name << ": trajectory: the path leaves the floor near (" << xy.x() << ", " << xy.y()
+          << ")";
+      throw WorldError(msg.str());
+    }
+    if (!std::isnan(dense[i].z())) z = dense[i].z();
+    samples_[i] = Eigen::Vector3d(xy.x(), xy.y(), z);
+  }
+  arc_.assign(n, 0.0);
+  for (int i = 1; i < n; ++i) {
+    arc_[i] = arc_[i - 1] + (samples_[i].head<2>() - samples_[i - 1].head<2>()).norm();
+  }
+  length_ = std::max(arc_.back(), 1e-6);
+
+  // Heading from a short chord around each sample (one-sided at the ends), unwrapped.
+  const int chord = std::max(1, static_cast<int>(std::round(0.1 / kStep)));
+  yaw_.assign(n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    const int a = std::max(0, std::min(i - chord, n - 1 - 2 * chord));
+    const int b = std::min(n - 1, std::max(0, a) + 2 * chord);
+    const Eigen::Vector2d d = samples_[b].head<2>() - samples_[std::max(0, a)].head<2>();
+    double yaw = d.norm() > 1e-9 ? std::atan2(d.y(), d.x()) : (i > 0 ? yaw_[i - 1] : 0.0);
+    if (i > 0) yaw = yaw_[i - 1] + std::remainder(yaw - yaw_[i - 1], 2.0 * kPi);
+    yaw_[i] = yaw;
+  }
+
+  // Speed profile: yaw-rate limit per segment, then acceleration limits forward and backward.
+  const double max_rate = spec.max_yaw_rate_dps * kPi / 180.0;
+  std::vector<double> v(n, spec.speed_mps);
+  for (int i = 1; i < n; ++i) {
+    const double ds = arc_[i] - arc_[i - 1], dyaw = std::abs(yaw_[i] - yaw_[i - 1]);
+    if (dyaw > 1e-12) v[i] = std::min(v[i], max_rate * ds / dyaw);
+  }
+  v[0] = v[n - 1] = 0.0;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int k = 1; k < n; ++k) {
+      const int i = pass == 0 ? k : n - 1 - k, j = pass == 0 ? i - 1 : i + 1;
+      const double ds = std::abs(arc_[i] - arc_[j]);
+      v[i] = std::min(v[i], std::sqrt(v[j] * v[j] + 2.0 * spec.max_accel_mps2 * ds));
+    }
+  }
+  time_.assign(n, 0.0);
+  for (int i = 1; i < n; ++i) {
+    const double ds = arc_[i] - arc_[i - 1], dyaw = std::abs(yaw_[i] - yaw_[i - 1]);
+    const double vm = 0.5 * (v[i] + v[i - 1]);
+    // At least as long as the turn takes at the yaw-rate limit (turning in place: ds ~ 0).
+    time_[i] = time_[i - 1] + std::max(vm > 1e-9 ? ds / vm : 0.0, dyaw / max_rate);
+  }
+  SplitMix rng(mixSeed(seed, 0x70617468));  // "path"
+  for (double& p : phase_) p = 2.0 * kPi * rng.uniform();
+}
+
+Pose3 RobotPath::poseAt(double t) const {
+  t = std::clamp(t, 0.0, time_.back());
+  const size_t i = std::min<size_t>(
+      std::max<size_t>(1, std::upper_bound(time_.begin(), time_.end(), t) - time_.begin()),
+      time_.size() - 1);
+  const double span = time_[i] - time_[i - 1];
+  const double a = span > 0 ? (t - time_[i - 1]) / span : 1.0;
+  const Eigen::Vector3d p = samples_[i - 1] + a * (samples_[i] - samples_[i - 1]);
+  const double yaw = yaw_[i - 1] + a * (yaw_[i] - yaw_[i - 1]);
+  // Vibration: a few incommensurate frequencies with seeded phases (smooth, deterministic).
+  auto wobble = [&](int k) {
+    return (std::sin(2 * kPi * 1.7 * t + phase_[3 * k]) +
+            0.6 * std::sin(2 * kPi * 4.3 * t + phase_[3 * k + 1]) +
+            0.4 * std::sin(2 * kPi * 9.1 * t + phase_[3 * k + 2])) /
+           2.0;
+  };
+  return poseFromXyzRpy(p.x(), p.y(), p.z() + jitter_z_ * wobble(2), jitter_rad_ * wobble(0),
+                        jitter_rad_ * wobble(1), yaw);
+}
+
+}  // namespace tacs::sim
