@@ -8,17 +8,20 @@
 #include "tacs_graphs/backend/factor_graph.h"
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/frames.h"
+#include "tacs_graphs/traversability/traversability_config.h"
 
 namespace tacs {
 
 struct PipelineConfig {
   FramesConfig frames;
   BackendConfig backend;
+  TraversabilityConfig traversability;
 
   template <class V>
   void visit(V& v) {
     v("frames", frames);
     v("backend", backend);
+    v("traversability", traversability);
   }
   void validate() const;
 };

@@ -5,6 +5,7 @@ namespace tacs {
 void PipelineConfig::validate() const {
   frames.validate();
   backend.validate();
+  traversability.validate();
 }
 
 LoadedPipelineConfig loadPipelineConfig(const std::string& yaml_path) {
