@@ -50,43 +50,54 @@ ClearanceField::ClearanceField(const BucketedScan& scan, const TriGrid& grid,
                                std::vector<float>* buffer)
     : dist_(buffer) {
   const int sub = config.clearance_subdivision;
-  const int fine = grid.cells() * sub;
+  const int n = grid.cells();
   const double fine_res = grid.resolution() / sub;
-  fine_ = fine;
   fine_res_ = fine_res;
-  origin_ = grid.origin();
   cap_ = static_cast<float>(2.0 * config.max_range);
-  // Free cells start at a large finite value (the parabola arithmetic needs finite numbers).
-  const float far = 4.0f * static_cast<float>(fine) * static_cast<float>(fine);
-  std::vector<float>& dist = *dist_;
-  dist.assign(static_cast<size_t>(fine) * fine, far);
-  bool any = false;
-  std::vector<char> column_used(fine, 0);
+  // The transform runs on the bounding box of the nodes with content only (every obstacle point
+  // and every node that can be queried lies in it): exact there, and indoors much smaller.
+  int r0 = n, r1 = -1, c0 = n, c1 = -1;
   for (size_t k = 0; k < models->size(); ++k) {
-    const NodeModel& m = (*models)[k];
-    for (uint32_t a = 0; a < m.count; ++a) {
-      const Eigen::Vector3f& p = scan.points[scan.order[m.begin + a]];
-      if (scan.point_class[scan.order[m.begin + a]] != kObstaclePoint) continue;
-      const int col = std::clamp(static_cast<int>((p.x() - grid.origin()) / fine_res), 0, fine - 1);
-      const int row = std::clamp(static_cast<int>((p.y() - grid.origin()) / fine_res), 0, fine - 1);
-      dist[static_cast<size_t>(row) * fine + col] = 0.0f;
-      column_used[col] = 1;
-      any = true;
-    }
+    if (!hasContent((*models)[k])) continue;
+    const int cell = static_cast<int>(k / 4);
+    r0 = std::min(r0, cell / n);
+    r1 = std::max(r1, cell / n);
+    c0 = std::min(c0, cell % n);
+    c1 = std::max(c1, cell % n);
+  }
+  if (r1 < 0) r0 = r1 = c0 = c1 = 0;
+  rows_ = (r1 - r0 + 1) * sub;
+  cols_ = (c1 - c0 + 1) * sub;
+  x0_ = grid.origin() + c0 * grid.resolution();
+  y0_ = grid.origin() + r0 * grid.resolution();
+  // Free cells start at a large finite value (the parabola arithmetic needs finite numbers).
+  const float far = 4.0f * static_cast<float>(n * sub) * static_cast<float>(n * sub);
+  std::vector<float>& dist = *dist_;
+  dist.assign(static_cast<size_t>(rows_) * cols_, far);
+  bool any = false;
+  std::vector<char> column_used(cols_, 0);
+  for (size_t i = 0; i < scan.points.size(); ++i) {
+    if (scan.node_of[i] < 0 || scan.point_class[i] != kObstaclePoint) continue;
+    const Eigen::Vector3f& p = scan.points[i];
+    const int col = std::clamp(static_cast<int>((p.x() - x0_) / fine_res), 0, cols_ - 1);
+    const int row = std::clamp(static_cast<int>((p.y() - y0_) / fine_res), 0, rows_ - 1);
+    dist[static_cast<size_t>(row) * cols_ + col] = 0.0f;
+    column_used[col] = 1;
+    any = true;
   }
   const float cap = cap_;
   if (!any) {
-    dist.assign(dist.size(), far);
     for (NodeModel& m : *models) m.clearance = m.center_clearance = cap;
     return;
   }
   std::vector<float> f, z;
   std::vector<int> v;
-  for (int col = 0; col < fine; ++col) {
-    if (column_used[col]) edt1d(dist.data() + col, fine, fine, &f, &v, &z);  // else all free
+  for (int col = 0; col < cols_; ++col) {
+    if (column_used[col]) edt1d(dist.data() + col, rows_, cols_, &f, &v, &z);  // else all free
   }
-  for (int row = 0; row < fine; ++row)
-    edt1d(dist.data() + static_cast<size_t>(row) * fine, fine, 1, &f, &v, &z);
+  for (int row = 0; row < rows_; ++row) {
+    edt1d(dist.data() + static_cast<size_t>(row) * cols_, cols_, 1, &f, &v, &z);
+  }
 
   // Fine cells of each triangle (by the sector of their centre; diagonal cells go to both).
   std::vector<std::pair<int, int>> cells_of[4];
@@ -99,25 +110,28 @@ ClearanceField::ClearanceField(const BucketedScan& scan, const TriGrid& grid,
       if (ay >= ax - eps) cells_of[dy >= 0 ? 1 : 3].emplace_back(a, b);
     }
   }
-  const int n = grid.cells();
   for (size_t k = 0; k < models->size(); ++k) {
     NodeModel& m = (*models)[k];
+    if (!hasContent(m)) {
+      m.clearance = m.center_clearance = cap;  // never output nor entered
+      continue;
+    }
     const int cell = static_cast<int>(k / 4), tri = static_cast<int>(k % 4);
-    const int row0 = (cell / n) * sub, col0 = (cell % n) * sub;
+    const int row0 = (cell / n - r0) * sub, col0 = (cell % n - c0) * sub;
     float best = far;
     for (const auto& [a, b] : cells_of[tri]) {
-      best = std::min(best, dist[static_cast<size_t>(row0 + a) * fine + col0 + b]);
+      best = std::min(best, dist[static_cast<size_t>(row0 + a) * cols_ + col0 + b]);
     }
     m.clearance = std::min(cap, static_cast<float>(std::sqrt(best) * fine_res));
+    m.center_clearance = at(m.position.x(), m.position.y());
   }
-  for (NodeModel& m : *models) m.center_clearance = at(m.position.x(), m.position.y());
 }
 
 float ClearanceField::at(double x, double y) const {
-  const int col = static_cast<int>(std::floor((x - origin_) / fine_res_));
-  const int row = static_cast<int>(std::floor((y - origin_) / fine_res_));
-  if (col < 0 || row < 0 || col >= fine_ || row >= fine_) return cap_;
-  const float d2 = (*dist_)[static_cast<size_t>(row) * fine_ + col];  // squared, in cells
+  const int col = static_cast<int>(std::floor((x - x0_) / fine_res_));
+  const int row = static_cast<int>(std::floor((y - y0_) / fine_res_));
+  if (col < 0 || row < 0 || col >= cols_ || row >= rows_ || dist_->empty()) return cap_;
+  const float d2 = (*dist_)[static_cast<size_t>(row) * cols_ + col];  // squared, in cells
   return std::min(cap_, static_cast<float>(std::sqrt(d2) * fine_res_));
 }
 

@@ -112,7 +112,7 @@ TravGraph buildGraph(const trav::TriGrid& grid, const std::vector<NodeModel>& mo
   std::vector<int> index(models.size(), -1);
   for (size_t k = 0; k < models.size(); ++k) {
     const NodeModel& m = models[k];
-    if (m.count == 0 && m.label == TravLabel::kUnknown) continue;  // nothing known
+    if (!trav::hasContent(m)) continue;  // nothing known
     TravNode v;
     v.position = m.position;
     v.normal = m.normal;

@@ -94,19 +94,22 @@ struct PlaneFit {
   size_t count = 0;
 };
 
-// PCA of the selected points: the normal is the direction of least variance, pointing up.
+// PCA of the selected points: the normal is the direction of least variance, pointing up. One
+// pass over the points, taken relative to `ref` (a point of the node) to keep the sums small.
 bool fitPlane(const std::vector<Eigen::Vector3f>& pts, const std::vector<uint32_t>& idx,
-              PlaneFit* fit) {
+              const Eigen::Vector3f& ref, PlaneFit* fit) {
   if (idx.size() < 3) return false;
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (uint32_t i : idx) sum += pts[i].cast<double>();
-  fit->mean = sum / static_cast<double>(idx.size());
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+  Eigen::Matrix3f outer = Eigen::Matrix3f::Zero();
   for (uint32_t i : idx) {
-    const Eigen::Vector3d v = pts[i].cast<double>() - fit->mean;
-    cov.noalias() += v * v.transpose();
+    const Eigen::Vector3f v = pts[i] - ref;
+    sum += v;
+    outer.noalias() += v * v.transpose();
   }
-  cov /= static_cast<double>(idx.size());
+  const double inv = 1.0 / static_cast<double>(idx.size());
+  const Eigen::Vector3d mean = sum.cast<double>() * inv;
+  const Eigen::Matrix3d cov = outer.cast<double>() * inv - mean * mean.transpose();
+  fit->mean = mean + ref.cast<double>();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
   es.computeDirect(cov);
   fit->eigenvalues = es.eigenvalues().cwiseMax(0.0);
@@ -129,6 +132,7 @@ void fitNode(const BucketedScan& scan, const TraversabilityConfig& c, NodeModel*
   for (size_t k = 0; k < nseed; ++k) lowest += (*zbuf)[k];
   lowest /= static_cast<double>(nseed);
   m->position.z() = lowest;
+  const Eigen::Vector3f ref = m->position.cast<float>();
 
   sel->clear();
   for (uint32_t k = 0; k < m->count; ++k) {
@@ -136,7 +140,7 @@ void fitNode(const BucketedScan& scan, const TraversabilityConfig& c, NodeModel*
   }
   PlaneFit fit;
   for (int it = 0; it < c.plane_iterations; ++it) {
-    if (!fitPlane(scan.points, *sel, &fit)) return;  // UNKNOWN
+    if (!fitPlane(scan.points, *sel, ref, &fit)) return;  // UNKNOWN
     if (it + 1 == c.plane_iterations) break;
     const double d = -fit.normal.dot(fit.mean);
     sel->clear();

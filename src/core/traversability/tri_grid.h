@@ -55,6 +55,9 @@ struct NodeModel {
   bool isGround() const { return label == TravLabel::kGround; }
 };
 
+/// A node with points or an inferred plane (the others are empty and never in a graph).
+inline bool hasContent(const NodeModel& m) { return m.count > 0 || m.inferred; }
+
 /// Valid points of a scan bucketed by node (counting sort): points of node i are
 /// points[order[models[i].begin .. begin + count)].
 struct BucketedScan {
@@ -127,8 +130,8 @@ class ClearanceField {
   bool segmentClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double min_clearance) const;
 
  private:
-  int fine_ = 0;
-  double fine_res_ = 0.0, origin_ = 0.0;
+  int rows_ = 0, cols_ = 0;  // fine cells of the bounding box of the nodes with content
+  double fine_res_ = 0.0, x0_ = 0.0, y0_ = 0.0;
   float cap_ = 0.0f;
   std::vector<float>* dist_;  // metres
 };
