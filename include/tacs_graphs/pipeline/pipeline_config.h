@@ -8,6 +8,7 @@
 #include "tacs_graphs/backend/factor_graph.h"
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/frames.h"
+#include "tacs_graphs/traversability/traversability_config.h"
 #include "tacs_graphs/walls/walls_config.h"
 
 namespace tacs {
@@ -16,12 +17,14 @@ struct PipelineConfig {
   FramesConfig frames;
   WallsConfig walls;
   BackendConfig backend;
+  TraversabilityConfig traversability;
 
   template <class V>
   void visit(V& v) {
     v("frames", frames);
     v("walls", walls);
     v("backend", backend);
+    v("traversability", traversability);
   }
   void validate() const;
 };

@@ -6,6 +6,7 @@ void PipelineConfig::validate() const {
   frames.validate();
   walls.validate();
   backend.validate();
+  traversability.validate();
 }
 
 LoadedPipelineConfig loadPipelineConfig(const std::string& yaml_path) {
