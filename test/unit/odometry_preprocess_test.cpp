@@ -90,16 +90,5 @@ TEST(VoxelDownsample, HandlesLargeExtentsWithoutMergingDistantPoints) {
   EXPECT_EQ(out.size(), 3u);
 }
 
-TEST(PreprocessConfig, ValidateNamesTheBadField) {
-  PreprocessConfig config;
-  config.max_range_m = 0.1;
-  try {
-    config.validate();
-    FAIL() << "expected ConfigError";
-  } catch (const std::exception& e) {
-    EXPECT_NE(std::string(e.what()).find("preprocess.max_range_m"), std::string::npos);
-  }
-}
-
 }  // namespace
 }  // namespace tacs

@@ -36,7 +36,8 @@ PointCloud preprocess(const PointCloud& in, const PreprocessConfig& config,
 
 /// Voxel-grid downsampling by hashing integer voxel coordinates (no dense grid, so any extent
 /// works, unlike a fixed-size index grid). Each occupied voxel yields the centroid of its points.
-/// Non-finite points are skipped. The output order is deterministic. voxel_size <= 0 copies.
+/// Non-finite points are skipped. Voxels come out in the order of their first point
+/// (deterministic). voxel_size <= 0 copies the finite points.
 PointCloud voxelDownsample(const PointCloud& in, double voxel_size);
 
 }  // namespace tacs

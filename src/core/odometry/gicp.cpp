@@ -15,13 +15,14 @@ using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 void GicpConfig::validate() const {
-  requireConfig(k_neighbors >= 3, "gicp.k_neighbors", "must be >= 3 (a plane needs 3 points)");
-  requireConfig(max_correspondence_distance_m > 0.0, "gicp.max_correspondence_distance_m",
+  requireConfig(k_neighbors >= 3, "odometry.gicp.k_neighbors",
+                "must be >= 3 (a plane needs 3 points)");
+  requireConfig(max_correspondence_distance_m > 0.0, "odometry.gicp.max_correspondence_distance_m",
                 "must be > 0");
-  requireConfig(max_iterations >= 1, "gicp.max_iterations", "must be >= 1");
-  requireConfig(translation_eps_m > 0.0, "gicp.translation_eps_m", "must be > 0");
-  requireConfig(rotation_eps_deg > 0.0, "gicp.rotation_eps_deg", "must be > 0");
-  requireConfig(num_threads >= 0, "gicp.num_threads", "must be >= 0 (0 = OpenMP default)");
+  requireConfig(max_iterations >= 1, "odometry.gicp.max_iterations", "must be >= 1");
+  requireConfig(translation_eps_m > 0.0, "odometry.gicp.translation_eps_m", "must be > 0");
+  requireConfig(rotation_eps_deg > 0.0, "odometry.gicp.rotation_eps_deg", "must be > 0");
+  requireConfig(num_threads >= 0, "odometry.gicp.num_threads", "must be >= 0 (0 = OpenMP default)");
 }
 
 namespace {
@@ -49,14 +50,6 @@ Pose3 retract(const Pose3& T, const Vector6d& delta) {
 struct Correspondence {
   int64_t target = -1;
   Eigen::Matrix3d mahalanobis;
-};
-
-struct CostSum {
-  double cost = 0.0;
-  CostSum& operator+=(const CostSum& o) {
-    cost += o.cost;
-    return *this;
-  }
 };
 
 }  // namespace
@@ -166,14 +159,15 @@ GicpResult Gicp::align(const Pose3& initial_guess) const {
     for (int attempt = 0; attempt < 10 && !accepted; ++attempt) {
       delta = (lin.H + lambda * Matrix6d::Identity()).ldlt().solve(-lin.g);
       const Pose3 candidate = retract(T, delta);
-      const CostSum trial = parallelReduce<CostSum>(
-          static_cast<int64_t>(src.size()), config_.num_threads, [&](int64_t i, CostSum& acc) {
-            const Correspondence& c = lin.pairs[i];
-            if (c.target < 0) return;
-            const Eigen::Vector3d r = tgt[c.target] - candidate * src[i];
-            acc.cost += r.dot(c.mahalanobis * r);
-          });
-      if (trial.cost <= lin.cost) {
+      // Serial: one 3x3 product per pair is cheaper than waking a second thread.
+      double trial_cost = 0.0;
+      for (size_t i = 0; i < src.size(); ++i) {
+        const Correspondence& c = lin.pairs[i];
+        if (c.target < 0) continue;
+        const Eigen::Vector3d r = tgt[c.target] - candidate * src[i];
+        trial_cost += r.dot(c.mahalanobis * r);
+      }
+      if (trial_cost <= lin.cost) {
         T = candidate;
         accepted = true;
         lambda *= 0.1;

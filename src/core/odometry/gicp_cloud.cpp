@@ -93,18 +93,12 @@ GicpCloud::ConstPtr GicpCloud::build(std::vector<Eigen::Vector3d> points, int k_
   cloud->buildIndex();
   const auto& pts = cloud->points_;
   cloud->covariances_.resize(pts.size());
-  const int threads = resolveThreads(num_threads);
-  const int64_t n = static_cast<int64_t>(pts.size());
-#pragma omp parallel num_threads(threads)
-  {
-    std::vector<uint32_t> indices;
-    std::vector<double> dist_sq;
-#pragma omp for schedule(static)
-    for (int64_t i = 0; i < n; ++i) {
-      cloud->knn(pts[i], k_neighbors, &indices, &dist_sq);
-      cloud->covariances_[i] = planeRegularizedCovariance(pts, indices);
-    }
-  }
+  parallelFor(static_cast<int64_t>(pts.size()), num_threads, [&](int64_t i) {
+    thread_local std::vector<uint32_t> indices;
+    thread_local std::vector<double> dist_sq;
+    cloud->knn(pts[i], k_neighbors, &indices, &dist_sq);
+    cloud->covariances_[i] = planeRegularizedCovariance(pts, indices);
+  });
   return cloud;
 }
 

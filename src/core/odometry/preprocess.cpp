@@ -13,10 +13,11 @@
 namespace tacs {
 
 void PreprocessConfig::validate() const {
-  requireConfig(min_range_m >= 0.0, "preprocess.min_range_m", "must be >= 0");
-  requireConfig(max_range_m > min_range_m, "preprocess.max_range_m", "must be > min_range_m");
-  requireConfig(voxel_size_m >= 0.0 && std::isfinite(voxel_size_m), "preprocess.voxel_size_m",
-                "must be >= 0 (0 disables downsampling)");
+  requireConfig(min_range_m >= 0.0, "odometry.preprocess.min_range_m", "must be >= 0");
+  requireConfig(max_range_m > min_range_m, "odometry.preprocess.max_range_m",
+                "must be > min_range_m");
+  requireConfig(voxel_size_m >= 0.0 && std::isfinite(voxel_size_m),
+                "odometry.preprocess.voxel_size_m", "must be >= 0 (0 disables downsampling)");
 }
 
 namespace {
@@ -25,77 +26,83 @@ bool isFinitePoint(const pcl::PointXYZI& p) {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
 }
 
-// Sorts (voxel key, point index) pairs so each voxel's points form one run, and appends the
-// centroid of each run. Sorting instead of a hash map keeps the output order deterministic.
-template <class Key>
-void appendVoxelCentroids(const PointCloud& in, std::vector<std::pair<Key, uint32_t>>* keyed,
-                          PointCloud* out) {
-  std::sort(keyed->begin(), keyed->end());
-  for (size_t begin = 0; begin < keyed->size();) {
-    size_t end = begin;
-    Eigen::Vector4d sum = Eigen::Vector4d::Zero();
-    for (; end < keyed->size() && (*keyed)[end].first == (*keyed)[begin].first; ++end) {
-      const auto& p = in.points[(*keyed)[end].second];
-      sum += Eigen::Vector4d(p.x, p.y, p.z, p.intensity);
-    }
-    sum /= static_cast<double>(end - begin);
-    pcl::PointXYZI c;
-    c.x = static_cast<float>(sum[0]);
-    c.y = static_cast<float>(sum[1]);
-    c.z = static_cast<float>(sum[2]);
-    c.intensity = static_cast<float>(sum[3]);
-    out->points.push_back(c);
-    begin = end;
+// Open-addressing hash table from integer voxel coordinates to a running centroid. Voxels are
+// emitted in order of their first point, so the output is deterministic for a given input.
+class VoxelTable {
+ public:
+  explicit VoxelTable(size_t expected) {
+    size_t capacity = 16;
+    while (capacity < 2 * expected) capacity *= 2;
+    slots_.assign(capacity, -1);
+    mask_ = capacity - 1;
+    cells_.reserve(expected);
   }
-}
 
-// Voxel coordinates relative to the minimum corner pack into one 64-bit key (21 bits per axis)
-// when the extent allows, which covers 400 km at 0.2 m; wider clouds use a 3-integer key.
-constexpr int kAxisBits = 21;
-constexpr int64_t kAxisMax = (int64_t{1} << kAxisBits) - 1;
+  void add(const std::array<int64_t, 3>& key, const pcl::PointXYZI& p) {
+    size_t h = hash(key) & mask_;
+    while (slots_[h] >= 0 && cells_[slots_[h]].key != key) h = (h + 1) & mask_;
+    if (slots_[h] < 0) {
+      slots_[h] = static_cast<int64_t>(cells_.size());
+      cells_.push_back({key, Eigen::Vector4d::Zero(), 0});
+    }
+    Cell& c = cells_[slots_[h]];
+    c.sum += Eigen::Vector4d(p.x, p.y, p.z, p.intensity);
+    ++c.count;
+  }
+
+  void appendCentroids(PointCloud* out) const {
+    out->points.reserve(out->points.size() + cells_.size());
+    for (const Cell& c : cells_) {
+      const Eigen::Vector4d mean = c.sum / static_cast<double>(c.count);
+      pcl::PointXYZI q;
+      q.x = static_cast<float>(mean[0]);
+      q.y = static_cast<float>(mean[1]);
+      q.z = static_cast<float>(mean[2]);
+      q.intensity = static_cast<float>(mean[3]);
+      out->points.push_back(q);
+    }
+  }
+
+ private:
+  struct Cell {
+    std::array<int64_t, 3> key;
+    Eigen::Vector4d sum;
+    int64_t count;
+  };
+  static size_t hash(const std::array<int64_t, 3>& k) {
+    uint64_t h = static_cast<uint64_t>(k[0]) * 0x9E3779B97F4A7C15ull;
+    h ^= static_cast<uint64_t>(k[1]) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+    h ^= static_cast<uint64_t>(k[2]) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+    return static_cast<size_t>(h ^ (h >> 29));
+  }
+
+  std::vector<int64_t> slots_;
+  std::vector<Cell> cells_;
+  size_t mask_ = 0;
+};
 
 }  // namespace
 
 PointCloud voxelDownsample(const PointCloud& in, double voxel_size) {
   PointCloud out;
   out.header = in.header;
-  std::vector<std::array<int64_t, 3>> cells;
-  std::vector<uint32_t> indices;
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
-  for (const auto& p : in.points) {
-    if (isFinitePoint(p)) lo = lo.cwiseMin(Eigen::Vector3d(p.x, p.y, p.z));
-  }
-  const double inv = voxel_size > 0.0 ? 1.0 / voxel_size : 0.0;
-  int64_t extent = 0;
-  for (size_t i = 0; i < in.points.size(); ++i) {
-    const auto& p = in.points[i];
-    if (!isFinitePoint(p)) continue;
-    if (!(voxel_size > 0.0)) {
-      out.points.push_back(p);
-      continue;
+  if (voxel_size > 0.0) {
+    const double inv = 1.0 / voxel_size;
+    VoxelTable table(in.points.size());
+    for (const auto& p : in.points) {
+      if (!isFinitePoint(p)) continue;
+      const Eigen::Vector3d scaled = Eigen::Vector3d(p.x, p.y, p.z) * inv;
+      if (scaled.cwiseAbs().maxCoeff() > 1e18) continue;  // would overflow a 64-bit index
+      table.add({static_cast<int64_t>(std::floor(scaled.x())),
+                 static_cast<int64_t>(std::floor(scaled.y())),
+                 static_cast<int64_t>(std::floor(scaled.z()))},
+                p);
     }
-    const Eigen::Vector3d scaled = (Eigen::Vector3d(p.x, p.y, p.z) - lo) * inv;
-    if (scaled.maxCoeff() > 1e18) continue;  // would overflow a 64-bit voxel index
-    const std::array<int64_t, 3> cell = {static_cast<int64_t>(scaled.x()),
-                                         static_cast<int64_t>(scaled.y()),
-                                         static_cast<int64_t>(scaled.z())};
-    extent = std::max({extent, cell[0], cell[1], cell[2]});
-    cells.push_back(cell);
-    indices.push_back(static_cast<uint32_t>(i));
-  }
-  if (extent <= kAxisMax) {
-    std::vector<std::pair<uint64_t, uint32_t>> keyed(cells.size());
-    for (size_t k = 0; k < cells.size(); ++k) {
-      keyed[k] = {static_cast<uint64_t>(cells[k][0]) << (2 * kAxisBits) |
-                      static_cast<uint64_t>(cells[k][1]) << kAxisBits |
-                      static_cast<uint64_t>(cells[k][2]),
-                  indices[k]};
-    }
-    appendVoxelCentroids(in, &keyed, &out);
+    table.appendCentroids(&out);
   } else {
-    std::vector<std::pair<std::array<int64_t, 3>, uint32_t>> keyed(cells.size());
-    for (size_t k = 0; k < cells.size(); ++k) keyed[k] = {cells[k], indices[k]};
-    appendVoxelCentroids(in, &keyed, &out);
+    for (const auto& p : in.points) {
+      if (isFinitePoint(p)) out.points.push_back(p);
+    }
   }
   out.width = static_cast<uint32_t>(out.points.size());
   out.height = 1;
