@@ -7,15 +7,18 @@
 
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/frames.h"
+#include "tacs_graphs/odometry/lidar_odometry.h"
 
 namespace tacs {
 
 struct PipelineConfig {
   FramesConfig frames;
+  OdometryConfig odometry;
 
   template <class V>
   void visit(V& v) {
     v("frames", frames);
+    v("odometry", odometry);
   }
   void validate() const;
 };

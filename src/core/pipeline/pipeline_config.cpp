@@ -2,7 +2,10 @@
 
 namespace tacs {
 
-void PipelineConfig::validate() const { frames.validate(); }
+void PipelineConfig::validate() const {
+  frames.validate();
+  odometry.validate();
+}
 
 LoadedPipelineConfig loadPipelineConfig(const std::string& yaml_path) {
   LoadedPipelineConfig loaded;
