@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_common.h"
 #include "tacs_graphs/common/timing.h"
 #include "tacs_graphs/odometry/gicp.h"
 #include "tacs_graphs/odometry/preprocess.h"
@@ -71,6 +72,7 @@ Row measure(const std::string& method, int reps, const std::function<Pose3()>& a
 }  // namespace
 
 int main(int argc, char** argv) {
+  tacs::bench::usePassiveOpenMpWait(argv);
   std::string data_dir = defaultDataDir();
   int reps = 10;
   int threads = 2;
@@ -152,6 +154,8 @@ int main(int argc, char** argv) {
               pre.min_range_m, pre.max_range_m, pre.voxel_size_m, ts.out_of_range, ss.out_of_range);
   std::printf("k = %d, max correspondence distance %.2f m, initial guess identity, %d reps\n",
               config.k_neighbors, config.max_correspondence_distance_m, reps);
+  std::printf("OpenMP wait policy: %s; 1-minute load average at the end: %s\n",
+              tacs::bench::openMpWaitPolicy().c_str(), tacs::bench::loadAverage().c_str());
   std::printf("threads: %d (machine: %d hardware threads; PCL's GICP is single-threaded)\n\n",
               threads, omp_get_num_procs());
   std::printf(

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../test/common/box_room.h"  // the scene renderer shared with the unit tests
+#include "bench_common.h"
 #include "tacs_graphs/common/timing.h"
 #include "tacs_graphs/odometry/lidar_odometry.h"
 #include "tacs_graphs/odometry/parallel.h"
@@ -34,6 +35,7 @@ tacs::Pose3 truePose(double t) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  tacs::bench::usePassiveOpenMpWait(argv);
   int scans = 60;
   tacs::OdometryConfig config;
   for (int i = 1; i < argc; ++i) {
@@ -72,9 +74,11 @@ int main(int argc, char** argv) {
   std::sort(sorted.begin(), sorted.end());
   std::printf(
       "LidarOdometry on %d synthetic VLP-16 scans (%.0f points each), %d threads "
-      "(machine: %d)\n\n",
+      "(machine: %d)\n",
       scans, double(points) / scans, tacs::resolveThreads(config.gicp.num_threads),
       omp_get_num_procs());
+  std::printf("OpenMP wait policy: %s; 1-minute load average at the end: %s\n\n",
+              tacs::bench::openMpWaitPolicy().c_str(), tacs::bench::loadAverage().c_str());
   std::printf(
       "| scans/s | mean ms/scan | median | max | GICP ms/scan | keyframes | failed | "
       "final drift (cm) | final rot. drift (deg) |\n|---|---|---|---|---|---|---|---|---|\n");
