@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "tacs_graphs/backend/map_export.h"
+#include "tacs_graphs/odometry/preprocess.h"
 
 namespace tacs {
 namespace {

@@ -40,7 +40,4 @@ void writeOctomap(const std::string& path, const SceneGraph& graph, const Keyfra
 /// Writes a .pcd (binary) through a temporary file. Throws std::runtime_error.
 void writePcdAtomically(const std::string& path, const PointCloud& cloud);
 
-/// Voxel-grid downsampling by hashing (one centroid per voxel), safe for large extents.
-PointCloud voxelDownsample(const PointCloud& cloud, double voxel_m);
-
 }  // namespace tacs

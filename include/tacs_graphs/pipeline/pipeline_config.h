@@ -8,6 +8,7 @@
 #include "tacs_graphs/backend/factor_graph.h"
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/frames.h"
+#include "tacs_graphs/odometry/lidar_odometry.h"
 #include "tacs_graphs/traversability/traversability_config.h"
 #include "tacs_graphs/walls/walls_config.h"
 
@@ -15,6 +16,7 @@ namespace tacs {
 
 struct PipelineConfig {
   FramesConfig frames;
+  OdometryConfig odometry;
   WallsConfig walls;
   BackendConfig backend;
   TraversabilityConfig traversability;
@@ -22,6 +24,7 @@ struct PipelineConfig {
   template <class V>
   void visit(V& v) {
     v("frames", frames);
+    v("odometry", odometry);
     v("walls", walls);
     v("backend", backend);
     v("traversability", traversability);

@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
-#include <unordered_map>
 
 #include "tacs_graphs/common/config.h"
+#include "tacs_graphs/odometry/preprocess.h"
 
 namespace tacs {
 
@@ -19,39 +19,6 @@ void MapExportConfig::validate() const {
   requireConfig(octomap_resolution_m > 0, "map_export.octomap_resolution_m", "must be > 0");
   requireConfig(octomap_max_range_m > 0, "map_export.octomap_max_range_m", "must be > 0");
   requireConfig(topdown_resolution_m > 0, "map_export.topdown_resolution_m", "must be > 0");
-}
-
-PointCloud voxelDownsample(const PointCloud& cloud, double voxel_m) {
-  struct Accumulator {
-    Eigen::Vector4d sum = Eigen::Vector4d::Zero();  // x y z intensity
-    int count = 0;
-  };
-  std::unordered_map<uint64_t, Accumulator> voxels;
-  voxels.reserve(cloud.size() / 4 + 1);
-  const double inv = 1.0 / voxel_m;
-  for (const auto& p : cloud) {
-    // 21 bits per axis: +-1 million voxels, 100 km at 0.1 m.
-    const auto key = [&](float v) {
-      return static_cast<uint64_t>(static_cast<int64_t>(std::floor(v * inv)) + (1 << 20)) &
-             0x1FFFFF;
-    };
-    const uint64_t k = key(p.x) | (key(p.y) << 21) | (key(p.z) << 42);
-    Accumulator& a = voxels[k];
-    a.sum += Eigen::Vector4d(p.x, p.y, p.z, p.intensity);
-    ++a.count;
-  }
-  PointCloud out;
-  out.reserve(voxels.size());
-  for (const auto& [k, a] : voxels) {
-    const Eigen::Vector4d m = a.sum / a.count;
-    pcl::PointXYZI q;
-    q.x = static_cast<float>(m[0]);
-    q.y = static_cast<float>(m[1]);
-    q.z = static_cast<float>(m[2]);
-    q.intensity = static_cast<float>(m[3]);
-    out.push_back(q);
-  }
-  return out;
 }
 
 PointCloud buildMapCloud(const SceneGraph& graph, const KeyframeClouds& clouds, double voxel_m) {

@@ -4,6 +4,7 @@ namespace tacs {
 
 void PipelineConfig::validate() const {
   frames.validate();
+  odometry.validate();
   walls.validate();
   backend.validate();
   traversability.validate();

@@ -1,0 +1,119 @@
+// Generalized-ICP (Segal et al., RSS 2009), the scan matcher of the odometry (paper Sec. III-A).
+// Each point carries a covariance from its k nearest neighbours, regularised to a plane
+// (eigenvalues -> 1, 1, 1e-3), so a pair of points is scored by a plane-to-plane distance.
+// A prepared cloud (points, covariances, KD-tree) is immutable and shared, so the target of
+// scan-to-map tracking is prepared once and aligned against many times.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "tacs_graphs/common/types.h"
+
+namespace tacs {
+
+struct GicpConfig {
+  int k_neighbors = 10;                        // points per covariance (the point included)
+  double max_correspondence_distance_m = 1.0;  // [m] farther pairs are not correspondences
+  int max_iterations = 30;                     // Levenberg-Marquardt iterations
+  double translation_eps_m = 1e-3;             // [m] converged when the step is below both
+  double rotation_eps_deg = 0.05;              // [deg]
+  int num_threads = 2;                         // OpenMP threads; 0 = OpenMP default
+
+  template <class V>
+  void visit(V& v) {
+    v("k_neighbors", k_neighbors);
+    v("max_correspondence_distance_m", max_correspondence_distance_m);
+    v("max_iterations", max_iterations);
+    v("translation_eps_m", translation_eps_m);
+    v("rotation_eps_deg", rotation_eps_deg);
+    v("num_threads", num_threads);
+  }
+  void validate() const;
+};
+
+/// Points with plane-regularised covariances and a KD-tree over them. Thread-safe to query.
+class GicpCloud {
+ public:
+  using ConstPtr = std::shared_ptr<const GicpCloud>;
+
+  /// Builds the KD-tree and the covariances (k nearest neighbours, num_threads as in GicpConfig).
+  static ConstPtr build(const PointCloud& cloud, int k_neighbors, int num_threads);
+  static ConstPtr build(std::vector<Eigen::Vector3d> points, int k_neighbors, int num_threads);
+  /// Uses the given covariances (e.g. transformed ones of an earlier cloud); builds only the tree.
+  static ConstPtr fromParts(std::vector<Eigen::Vector3d> points,
+                            std::vector<Eigen::Matrix3d> covariances);
+
+  ~GicpCloud();
+  size_t size() const { return points_.size(); }
+  bool empty() const { return points_.empty(); }
+  const std::vector<Eigen::Vector3d>& points() const { return points_; }
+  const std::vector<Eigen::Matrix3d>& covariances() const { return covariances_; }
+
+  /// Index of the nearest point closer than sqrt(max_dist_sq), or -1; its squared distance.
+  int64_t nearest(const Eigen::Vector3d& query, double max_dist_sq, double* dist_sq) const;
+  /// Up to k nearest points (fewer when the cloud is smaller), closest first.
+  void knn(const Eigen::Vector3d& query, int k, std::vector<uint32_t>* indices,
+           std::vector<double>* dist_sq) const;
+
+ private:
+  struct Index;
+  GicpCloud() = default;
+  void buildIndex();
+
+  std::vector<Eigen::Vector3d> points_;
+  std::vector<Eigen::Matrix3d> covariances_;
+  std::unique_ptr<Index> index_;
+};
+
+/// Covariance of a point's neighbourhood with eigenvalues replaced by (1, 1, 1e-3): a unit disc
+/// in the local plane. Fewer than 3 neighbours give the identity (no known structure).
+Eigen::Matrix3d planeRegularizedCovariance(const std::vector<Eigen::Vector3d>& points,
+                                           const std::vector<uint32_t>& neighbours);
+
+struct GicpResult {
+  bool converged = false;  // the last step was below the eps thresholds
+  int iterations = 0;
+  Pose3 T_target_source = Pose3::Identity();
+  double fitness = 0.0;       // [m^2] mean squared distance of the inlier pairs
+  double inlier_ratio = 0.0;  // share of source points with a correspondence
+  size_t inliers = 0;
+  /// Gauss-Newton Hessian of the GICP cost at the result: the information of T_target_source
+  /// for a perturbation on the right (source frame), order x y z rx ry rz. Its scale follows
+  /// the unit-less plane covariances, so consumers should scale it.
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
+  double time_ms = 0.0;
+};
+
+class Gicp {
+ public:
+  explicit Gicp(const GicpConfig& config = GicpConfig());
+
+  void setTarget(const PointCloud& cloud);  // builds the KD-tree and covariances once
+  void setTarget(GicpCloud::ConstPtr target);
+  void setSource(const PointCloud& cloud);
+  void setSource(GicpCloud::ConstPtr source);
+  const GicpCloud::ConstPtr& target() const { return target_; }
+  const GicpCloud::ConstPtr& source() const { return source_; }
+  const GicpConfig& config() const { return config_; }
+
+  /// Aligns source to target from the initial guess of T_target_source. Without a target or
+  /// source, or with no correspondence, returns converged = false and the guess.
+  GicpResult align(const Pose3& initial_guess) const;
+
+  /// Fitness, inliers and information of a given T_target_source, without optimising.
+  GicpResult evaluate(const Pose3& T_target_source) const;
+
+ private:
+  struct Linearization;
+  Linearization linearize(const Pose3& T) const;
+  void fillScores(const Linearization& lin, GicpResult* result) const;
+
+  GicpConfig config_;
+  GicpCloud::ConstPtr target_;
+  GicpCloud::ConstPtr source_;
+};
+
+}  // namespace tacs

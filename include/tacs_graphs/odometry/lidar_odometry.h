@@ -1,0 +1,111 @@
+// Scan-to-local-map GICP odometry (paper Sec. III-A): each scan is aligned to a map made of the
+// most recent keyframes, from a constant-velocity guess; keyframes are taken by travelled
+// distance and rotation and carry the downsampled scan for the rest of the pipeline.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <string>
+
+#include "tacs_graphs/common/types.h"
+#include "tacs_graphs/odometry/gicp.h"
+#include "tacs_graphs/odometry/preprocess.h"
+
+namespace tacs {
+
+struct OdometryConfig {
+  PreprocessConfig preprocess;
+  GicpConfig gicp;
+  double keyframe_distance_m = 0.5;  // [m] new keyframe after this translation from the last one
+  double keyframe_angle_deg = 15.0;  // [deg] ... or after this rotation
+  int local_map_keyframes = 10;      // keyframes in the sliding-window local map
+  double local_map_voxel_m = 0.2;    // [m] voxel size of the merged local map
+  int min_scan_points = 100;         // fewer points after preprocessing: scan rejected
+  double max_time_gap_s = 0.5;       // [s] longer gaps reset the constant-velocity guess
+  // Without a motion prior (start, time gap, rejected scan) a first coarse alignment uses this
+  // wider gating [m], so a jump of up to about this size is recovered.
+  double recovery_correspondence_distance_m = 2.5;
+  double min_inlier_ratio = 0.3;     // registrations with fewer inliers are rejected
+  double max_correction_m = 1.0;     // [m] a registration may move the guess at most this far
+  double max_correction_deg = 30.0;  // [deg] ... and rotate it at most this much
+
+  template <class V>
+  void visit(V& v) {
+    v("preprocess", preprocess);
+    v("gicp", gicp);
+    v("keyframe_distance_m", keyframe_distance_m);
+    v("keyframe_angle_deg", keyframe_angle_deg);
+    v("local_map_keyframes", local_map_keyframes);
+    v("local_map_voxel_m", local_map_voxel_m);
+    v("min_scan_points", min_scan_points);
+    v("max_time_gap_s", max_time_gap_s);
+    v("recovery_correspondence_distance_m", recovery_correspondence_distance_m);
+    v("min_inlier_ratio", min_inlier_ratio);
+    v("max_correction_m", max_correction_m);
+    v("max_correction_deg", max_correction_deg);
+  }
+  void validate() const;
+};
+
+struct OdometryResult {
+  bool ok = false;
+  std::string error;  // why ok is false, e.g. "empty scan after preprocessing (...)"
+  double stamp = 0.0;
+  Pose3 T_odom_base = Pose3::Identity();  // the scan's pose; the last good pose when !ok
+  bool is_keyframe = false;
+  uint32_t keyframe_id = 0;
+  PointCloud::Ptr keyframe_cloud;  // downsampled scan in the base frame (keyframes only)
+  /// Information of the motion since the previous keyframe (keyframes only; zero for the first),
+  /// order x y z rx ry rz, perturbation in this keyframe's frame. GICP Hessian scale.
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
+  bool motion_prior_reset = false;  // the guess was the last pose (no velocity known)
+  GicpResult registration;
+  PreprocessStats preprocess;
+  double time_ms = 0.0;
+};
+
+class LidarOdometry {
+ public:
+  explicit LidarOdometry(const OdometryConfig& config);
+
+  /// `scan` is in the base frame (the caller applies the sensor extrinsic). Never throws on bad
+  /// data: empty, all-invalid, too sparse or unregistrable scans and non-increasing stamps give
+  /// ok = false with a reason and leave the state as it was; a gap longer than max_time_gap_s
+  /// resets the constant-velocity guess instead of extrapolating it.
+  OdometryResult process(double stamp, const PointCloud& scan);
+
+  const OdometryConfig& config() const { return config_; }
+  /// Pose of the last accepted scan.
+  const Pose3& pose() const { return last_pose_; }
+  /// The current local map (odom frame), null before the first scan.
+  const GicpCloud::ConstPtr& localMap() const { return local_map_; }
+  size_t numKeyframes() const { return next_keyframe_id_; }
+
+ private:
+  struct Keyframe {
+    uint32_t id = 0;
+    Pose3 T_odom_base = Pose3::Identity();
+    PointCloud::Ptr cloud;     // base frame
+    GicpCloud::ConstPtr gicp;  // base frame, with covariances
+  };
+
+  Pose3 predict(double stamp, bool* reset) const;
+  bool isKeyframe(const Pose3& T_odom_base) const;
+  void addKeyframe(OdometryResult* result, const GicpCloud::ConstPtr& scan_gicp,
+                   const PointCloud::Ptr& cloud);
+  void rebuildLocalMap();
+
+  OdometryConfig config_;
+  bool initialized_ = false;
+  double last_stamp_ = 0.0;
+  Pose3 last_pose_ = Pose3::Identity();
+  // Motion per second as (translation, rotation vector) over the last accepted step.
+  bool has_velocity_ = false;
+  Eigen::Vector3d linear_velocity_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_velocity_ = Eigen::Vector3d::Zero();
+  std::deque<Keyframe> window_;
+  GicpCloud::ConstPtr local_map_;
+  uint32_t next_keyframe_id_ = 0;
+};
+
+}  // namespace tacs

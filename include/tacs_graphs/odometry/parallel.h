@@ -1,0 +1,57 @@
+// Deterministic OpenMP reductions. The index range is cut into fixed blocks that threads take
+// dynamically (a thread descheduled on a busy machine does not hold up a large static share);
+// each block has its own partial sum and the partials are added in block order, so the result
+// is bit-identical for any thread count (offline runs are repeatable).
+#pragma once
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+namespace tacs {
+
+/// num_threads <= 0 means the OpenMP default.
+inline int resolveThreads(int num_threads) {
+  return num_threads > 0 ? num_threads : omp_get_max_threads();
+}
+
+/// Threads worth starting for n items: each thread gets at least kMinItemsPerThread items, since
+/// waking a thread costs far more than a small loop when the cores are shared with other work.
+inline int threadsFor(int64_t n, int num_threads) {
+  constexpr int64_t kMinItemsPerThread = 2048;
+  const int64_t useful = std::max<int64_t>(1, n / kMinItemsPerThread);
+  return static_cast<int>(std::min<int64_t>(resolveThreads(num_threads), useful));
+}
+
+/// Calls fn(i, partial) for i in [0, n) and returns the sum of the partials. Acc must be
+/// default-constructible to zero and have operator+=.
+template <class Acc, class Fn>
+Acc parallelReduce(int64_t n, int num_threads, const Fn& fn) {
+  constexpr int64_t kBlock = 512;
+  const int64_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<Acc> partial(static_cast<size_t>(blocks));
+#pragma omp parallel for num_threads(threadsFor(n, num_threads)) schedule(dynamic, 1)
+  for (int64_t b = 0; b < blocks; ++b) {
+    const int64_t end = std::min(n, (b + 1) * kBlock);
+    for (int64_t i = b * kBlock; i < end; ++i) fn(i, partial[b]);
+  }
+  Acc total;
+  for (const Acc& p : partial) total += p;
+  return total;
+}
+
+/// Calls fn(i) for i in [0, n) in blocks taken dynamically by the threads.
+template <class Fn>
+void parallelFor(int64_t n, int num_threads, const Fn& fn) {
+  constexpr int64_t kBlock = 256;
+  const int64_t blocks = (n + kBlock - 1) / kBlock;
+#pragma omp parallel for num_threads(threadsFor(n, num_threads)) schedule(dynamic, 1)
+  for (int64_t b = 0; b < blocks; ++b) {
+    const int64_t end = std::min(n, (b + 1) * kBlock);
+    for (int64_t i = b * kBlock; i < end; ++i) fn(i);
+  }
+}
+
+}  // namespace tacs

@@ -1,0 +1,43 @@
+// Scan preprocessing for odometry: drop invalid returns, crop by range, voxel downsample.
+#pragma once
+
+#include <cstddef>
+
+#include "tacs_graphs/common/types.h"
+
+namespace tacs {
+
+struct PreprocessConfig {
+  double min_range_m = 0.5;   // [m] closer returns hit the robot itself
+  double max_range_m = 40.0;  // [m] farther returns are sparse and noisy indoors
+  double voxel_size_m = 0.2;  // [m] voxel edge of the downsampling grid; 0 disables downsampling
+
+  template <class V>
+  void visit(V& v) {
+    v("min_range_m", min_range_m);
+    v("max_range_m", max_range_m);
+    v("voxel_size_m", voxel_size_m);
+  }
+  void validate() const;
+};
+
+/// What preprocess() did with the points: input = non_finite + out_of_range + kept, and `output`
+/// is the number of voxel centroids made from the kept points.
+struct PreprocessStats {
+  size_t input = 0, non_finite = 0, out_of_range = 0, output = 0;
+};
+
+/// Removes non-finite points and points whose distance to the origin is outside
+/// [min_range_m, max_range_m] (this also drops the exact (0,0,0) "no return" points), then
+/// replaces the points of each voxel by their centroid (intensity averaged). Never throws on bad
+/// data; an all-invalid input gives an empty cloud.
+PointCloud preprocess(const PointCloud& in, const PreprocessConfig& config,
+                      PreprocessStats* stats = nullptr);
+
+/// Voxel-grid downsampling by hashing integer voxel coordinates (no dense grid, so any extent
+/// works, unlike a fixed-size index grid). Each occupied voxel yields the centroid of its points.
+/// Non-finite points are skipped. Voxels come out in the order of their first point
+/// (deterministic). voxel_size <= 0 copies the finite points.
+PointCloud voxelDownsample(const PointCloud& in, double voxel_size);
+
+}  // namespace tacs

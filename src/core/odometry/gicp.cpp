@@ -1,0 +1,194 @@
+#include "tacs_graphs/odometry/gicp.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
+
+#include "tacs_graphs/common/config.h"
+#include "tacs_graphs/common/timing.h"
+#include "tacs_graphs/odometry/parallel.h"
+
+namespace tacs {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+void GicpConfig::validate() const {
+  requireConfig(k_neighbors >= 3, "odometry.gicp.k_neighbors",
+                "must be >= 3 (a plane needs 3 points)");
+  requireConfig(max_correspondence_distance_m > 0.0, "odometry.gicp.max_correspondence_distance_m",
+                "must be > 0");
+  requireConfig(max_iterations >= 1, "odometry.gicp.max_iterations", "must be >= 1");
+  requireConfig(translation_eps_m > 0.0, "odometry.gicp.translation_eps_m", "must be > 0");
+  requireConfig(rotation_eps_deg > 0.0, "odometry.gicp.rotation_eps_deg", "must be > 0");
+  requireConfig(num_threads >= 0, "odometry.gicp.num_threads", "must be >= 0 (0 = OpenMP default)");
+}
+
+namespace {
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
+// T * Exp(delta) with delta = (v, w) on the right: t += R v, R = R Exp(w).
+Pose3 retract(const Pose3& T, const Vector6d& delta) {
+  Pose3 out = T;
+  out.translation() += T.linear() * delta.head<3>();
+  const Eigen::Vector3d w = delta.tail<3>();
+  const double angle = w.norm();
+  if (angle > 0.0) {
+    Eigen::Quaterniond q(T.linear() * Eigen::AngleAxisd(angle, w / angle).toRotationMatrix());
+    out.linear() = q.normalized().toRotationMatrix();
+  }
+  return out;
+}
+
+// A source point's correspondence: target index (or -1) and the pair's inverse covariance.
+struct Correspondence {
+  int64_t target = -1;
+  Eigen::Matrix3d mahalanobis;
+};
+
+}  // namespace
+
+struct Gicp::Linearization {
+  Matrix6d H = Matrix6d::Zero();
+  Vector6d g = Vector6d::Zero();
+  double cost = 0.0;     // sum of squared Mahalanobis distances
+  double sq_dist = 0.0;  // sum of squared Euclidean distances
+  size_t inliers = 0;
+  std::vector<Correspondence> pairs;  // filled by linearize(), not by +=
+
+  Linearization& operator+=(const Linearization& o) {
+    H += o.H;
+    g += o.g;
+    cost += o.cost;
+    sq_dist += o.sq_dist;
+    inliers += o.inliers;
+    return *this;
+  }
+};
+
+Gicp::Gicp(const GicpConfig& config) : config_(config) {}
+
+void Gicp::setTarget(const PointCloud& cloud) {
+  target_ = GicpCloud::build(cloud, config_.k_neighbors, config_.num_threads);
+}
+void Gicp::setTarget(GicpCloud::ConstPtr target) { target_ = std::move(target); }
+void Gicp::setSource(const PointCloud& cloud) {
+  source_ = GicpCloud::build(cloud, config_.k_neighbors, config_.num_threads);
+}
+void Gicp::setSource(GicpCloud::ConstPtr source) { source_ = std::move(source); }
+
+Gicp::Linearization Gicp::linearize(const Pose3& T) const {
+  const auto& src = source_->points();
+  const auto& src_cov = source_->covariances();
+  const auto& tgt = target_->points();
+  const auto& tgt_cov = target_->covariances();
+  const Eigen::Matrix3d R = T.linear();
+  const double max_sq =
+      config_.max_correspondence_distance_m * config_.max_correspondence_distance_m;
+  std::vector<Correspondence> pairs(src.size());
+  Linearization lin = parallelReduce<Linearization>(
+      static_cast<int64_t>(src.size()), config_.num_threads, [&](int64_t i, Linearization& acc) {
+        const Eigen::Vector3d p = T * src[i];
+        double dist_sq = 0.0;
+        const int64_t j = target_->nearest(p, max_sq, &dist_sq);
+        Correspondence& c = pairs[i];
+        c.target = j;
+        if (j < 0) return;
+        // Combined covariance of the pair (GICP): C_target + R C_source R^T.
+        c.mahalanobis = (tgt_cov[j] + R * src_cov[i] * R.transpose()).inverse();
+        const Eigen::Vector3d r = tgt[j] - p;
+        Eigen::Matrix<double, 3, 6> J;  // d r / d delta for T * Exp(delta)
+        J.leftCols<3>() = -R;
+        J.rightCols<3>() = R * skew(src[i]);
+        const Eigen::Matrix<double, 6, 3> JtM = J.transpose() * c.mahalanobis;
+        acc.H.noalias() += JtM * J;
+        acc.g.noalias() += JtM * r;
+        acc.cost += r.dot(c.mahalanobis * r);
+        acc.sq_dist += dist_sq;
+        ++acc.inliers;
+      });
+  lin.pairs = std::move(pairs);
+  return lin;
+}
+
+void Gicp::fillScores(const Linearization& lin, GicpResult* result) const {
+  result->inliers = lin.inliers;
+  result->inlier_ratio = static_cast<double>(lin.inliers) / source_->size();
+  result->fitness = lin.inliers ? lin.sq_dist / lin.inliers : 0.0;
+  result->information = lin.H;
+}
+
+GicpResult Gicp::evaluate(const Pose3& T_target_source) const {
+  Stopwatch watch;
+  GicpResult result;
+  result.T_target_source = T_target_source;
+  if (target_ && source_ && !target_->empty() && !source_->empty()) {
+    fillScores(linearize(T_target_source), &result);
+  }
+  result.time_ms = watch.elapsedMs();
+  return result;
+}
+
+GicpResult Gicp::align(const Pose3& initial_guess) const {
+  Stopwatch watch;
+  GicpResult result;
+  result.T_target_source = initial_guess;
+  if (!target_ || !source_ || target_->empty() || source_->empty()) {
+    result.time_ms = watch.elapsedMs();
+    return result;
+  }
+  const auto& src = source_->points();
+  const auto& tgt = target_->points();
+  const double rot_eps = config_.rotation_eps_deg * M_PI / 180.0;
+
+  Pose3 T = initial_guess;
+  Linearization lin = linearize(T);
+  double lambda = -1.0;
+  for (int iter = 0; iter < config_.max_iterations && lin.inliers >= 6; ++iter) {
+    result.iterations = iter + 1;
+    // Levenberg-Marquardt: damp until the cost (same pairs) decreases.
+    if (lambda < 0.0) lambda = 1e-9 * lin.H.diagonal().maxCoeff();
+    bool accepted = false;
+    Vector6d delta = Vector6d::Zero();
+    for (int attempt = 0; attempt < 10 && !accepted; ++attempt) {
+      delta = (lin.H + lambda * Matrix6d::Identity()).ldlt().solve(-lin.g);
+      const Pose3 candidate = retract(T, delta);
+      // Serial: one 3x3 product per pair is cheaper than waking a second thread.
+      double trial_cost = 0.0;
+      for (size_t i = 0; i < src.size(); ++i) {
+        const Correspondence& c = lin.pairs[i];
+        if (c.target < 0) continue;
+        const Eigen::Vector3d r = tgt[c.target] - candidate * src[i];
+        trial_cost += r.dot(c.mahalanobis * r);
+      }
+      if (trial_cost <= lin.cost) {
+        T = candidate;
+        accepted = true;
+        lambda *= 0.1;
+      } else {
+        lambda = std::max(lambda * 10.0, 1e-12);
+      }
+    }
+    if (!accepted) {  // no step lowers the cost: at the minimum for these pairs
+      result.converged = true;
+      break;
+    }
+    lin = linearize(T);
+    if (delta.head<3>().norm() < config_.translation_eps_m && delta.tail<3>().norm() < rot_eps) {
+      result.converged = true;
+      break;
+    }
+  }
+  result.T_target_source = T;
+  fillScores(lin, &result);
+  result.time_ms = watch.elapsedMs();
+  return result;
+}
+
+}  // namespace tacs

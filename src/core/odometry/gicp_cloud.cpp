@@ -1,0 +1,146 @@
+#include <Eigen/Eigenvalues>
+#include <limits>
+#include <nanoflann.hpp>
+
+#include "tacs_graphs/odometry/gicp.h"
+#include "tacs_graphs/odometry/parallel.h"
+
+namespace tacs {
+
+namespace {
+
+// nanoflann reads points through this adaptor. The tree works in float: half the memory
+// traffic of double, and centimetre-level scan data loses nothing.
+struct PointsAdaptor {
+  std::vector<Eigen::Vector3f> points;
+  size_t kdtree_get_point_count() const { return points.size(); }
+  float kdtree_get_pt(size_t i, size_t dim) const { return points[i][dim]; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+
+// Keeps only the closest point, and prunes the search with the gating radius from the start.
+class NearestWithin {
+ public:
+  explicit NearestWithin(float max_dist_sq) : worst_(max_dist_sq) {}
+  bool addPoint(float dist, uint32_t index) {
+    if (dist < worst_) {
+      worst_ = dist;
+      index_ = index;
+      found_ = true;
+    }
+    return true;
+  }
+  float worstDist() const { return worst_; }
+  bool full() const { return found_; }
+  int64_t index() const { return found_ ? int64_t{index_} : -1; }
+
+ private:
+  float worst_;
+  uint32_t index_ = 0;
+  bool found_ = false;
+};
+
+}  // namespace
+
+struct GicpCloud::Index {
+  using Tree =
+      nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointsAdaptor>,
+                                          PointsAdaptor, 3, uint32_t>;
+  explicit Index(const std::vector<Eigen::Vector3d>& points)
+      : adaptor{toFloat(points)}, tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
+  static std::vector<Eigen::Vector3f> toFloat(const std::vector<Eigen::Vector3d>& points) {
+    std::vector<Eigen::Vector3f> out(points.size());
+    for (size_t i = 0; i < points.size(); ++i) out[i] = points[i].cast<float>();
+    return out;
+  }
+  PointsAdaptor adaptor;  // declared before the tree, which reads it while being built
+  Tree tree;
+};
+
+GicpCloud::~GicpCloud() = default;
+
+void GicpCloud::buildIndex() { index_ = std::make_unique<Index>(points_); }
+
+Eigen::Matrix3d planeRegularizedCovariance(const std::vector<Eigen::Vector3d>& points,
+                                           const std::vector<uint32_t>& neighbours) {
+  if (neighbours.size() < 3) return Eigen::Matrix3d::Identity();
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (uint32_t j : neighbours) mean += points[j];
+  mean /= static_cast<double>(neighbours.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (uint32_t j : neighbours) {
+    const Eigen::Vector3d d = points[j] - mean;
+    cov.noalias() += d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(cov);  // eigenvalues ascending: the first vector is the plane normal
+  const Eigen::Vector3d values(1e-3, 1.0, 1.0);
+  return eig.eigenvectors() * values.asDiagonal() * eig.eigenvectors().transpose();
+}
+
+GicpCloud::ConstPtr GicpCloud::build(const PointCloud& cloud, int k_neighbors, int num_threads) {
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(cloud.points.size());
+  for (const auto& p : cloud.points) {
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) {
+      points.emplace_back(p.x, p.y, p.z);
+    }
+  }
+  return build(std::move(points), k_neighbors, num_threads);
+}
+
+GicpCloud::ConstPtr GicpCloud::build(std::vector<Eigen::Vector3d> points, int k_neighbors,
+                                     int num_threads) {
+  std::shared_ptr<GicpCloud> cloud(new GicpCloud);
+  cloud->points_ = std::move(points);
+  cloud->buildIndex();
+  const auto& pts = cloud->points_;
+  cloud->covariances_.resize(pts.size());
+  parallelFor(static_cast<int64_t>(pts.size()), num_threads, [&](int64_t i) {
+    thread_local std::vector<uint32_t> indices;
+    thread_local std::vector<double> dist_sq;
+    cloud->knn(pts[i], k_neighbors, &indices, &dist_sq);
+    cloud->covariances_[i] = planeRegularizedCovariance(pts, indices);
+  });
+  return cloud;
+}
+
+GicpCloud::ConstPtr GicpCloud::fromParts(std::vector<Eigen::Vector3d> points,
+                                         std::vector<Eigen::Matrix3d> covariances) {
+  std::shared_ptr<GicpCloud> cloud(new GicpCloud);
+  if (covariances.size() != points.size())
+    covariances.assign(points.size(), Eigen::Matrix3d::Identity());
+  cloud->points_ = std::move(points);
+  cloud->covariances_ = std::move(covariances);
+  cloud->buildIndex();
+  return cloud;
+}
+
+int64_t GicpCloud::nearest(const Eigen::Vector3d& query, double max_dist_sq,
+                           double* dist_sq) const {
+  if (points_.empty()) return -1;
+  const Eigen::Vector3f q = query.cast<float>();
+  NearestWithin result(static_cast<float>(max_dist_sq));
+  index_->tree.findNeighbors(result, q.data(), nanoflann::SearchParams());
+  if (dist_sq) *dist_sq = result.worstDist();
+  return result.index();
+}
+
+void GicpCloud::knn(const Eigen::Vector3d& query, int k, std::vector<uint32_t>* indices,
+                    std::vector<double>* dist_sq) const {
+  const size_t want = std::min<size_t>(static_cast<size_t>(std::max(k, 0)), points_.size());
+  indices->resize(want);
+  dist_sq->resize(want);
+  if (want == 0) return;
+  thread_local std::vector<float> dists;
+  dists.resize(want);
+  const Eigen::Vector3f q = query.cast<float>();
+  const size_t found = index_->tree.knnSearch(q.data(), want, indices->data(), dists.data());
+  indices->resize(found);
+  dist_sq->assign(dists.begin(), dists.begin() + found);
+}
+
+}  // namespace tacs

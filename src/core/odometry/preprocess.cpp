@@ -1,0 +1,143 @@
+#include "tacs_graphs/odometry/preprocess.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "tacs_graphs/common/config.h"
+
+namespace tacs {
+
+void PreprocessConfig::validate() const {
+  requireConfig(min_range_m >= 0.0, "odometry.preprocess.min_range_m", "must be >= 0");
+  requireConfig(max_range_m > min_range_m, "odometry.preprocess.max_range_m",
+                "must be > min_range_m");
+  requireConfig(voxel_size_m >= 0.0 && std::isfinite(voxel_size_m),
+                "odometry.preprocess.voxel_size_m", "must be >= 0 (0 disables downsampling)");
+}
+
+namespace {
+
+bool isFinitePoint(const pcl::PointXYZI& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+// Open-addressing hash table from integer voxel coordinates to a running centroid. Voxels are
+// emitted in order of their first point, so the output is deterministic for a given input.
+class VoxelTable {
+ public:
+  explicit VoxelTable(size_t expected) {
+    size_t capacity = 16;
+    while (capacity < 2 * expected) capacity *= 2;
+    slots_.assign(capacity, -1);
+    mask_ = capacity - 1;
+    cells_.reserve(expected);
+  }
+
+  void add(const std::array<int64_t, 3>& key, const pcl::PointXYZI& p) {
+    size_t h = hash(key) & mask_;
+    while (slots_[h] >= 0 && cells_[slots_[h]].key != key) h = (h + 1) & mask_;
+    if (slots_[h] < 0) {
+      slots_[h] = static_cast<int64_t>(cells_.size());
+      cells_.push_back({key, Eigen::Vector4d::Zero(), 0});
+    }
+    Cell& c = cells_[slots_[h]];
+    c.sum += Eigen::Vector4d(p.x, p.y, p.z, p.intensity);
+    ++c.count;
+  }
+
+  void appendCentroids(PointCloud* out) const {
+    out->points.reserve(out->points.size() + cells_.size());
+    for (const Cell& c : cells_) {
+      const Eigen::Vector4d mean = c.sum / static_cast<double>(c.count);
+      pcl::PointXYZI q;
+      q.x = static_cast<float>(mean[0]);
+      q.y = static_cast<float>(mean[1]);
+      q.z = static_cast<float>(mean[2]);
+      q.intensity = static_cast<float>(mean[3]);
+      out->points.push_back(q);
+    }
+  }
+
+ private:
+  struct Cell {
+    std::array<int64_t, 3> key;
+    Eigen::Vector4d sum;
+    int64_t count;
+  };
+  static size_t hash(const std::array<int64_t, 3>& k) {
+    uint64_t h = static_cast<uint64_t>(k[0]) * 0x9E3779B97F4A7C15ull;
+    h ^= static_cast<uint64_t>(k[1]) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+    h ^= static_cast<uint64_t>(k[2]) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+    return static_cast<size_t>(h ^ (h >> 29));
+  }
+
+  std::vector<int64_t> slots_;
+  std::vector<Cell> cells_;
+  size_t mask_ = 0;
+};
+
+}  // namespace
+
+PointCloud voxelDownsample(const PointCloud& in, double voxel_size) {
+  PointCloud out;
+  out.header = in.header;
+  if (voxel_size > 0.0) {
+    const double inv = 1.0 / voxel_size;
+    VoxelTable table(in.points.size());
+    for (const auto& p : in.points) {
+      if (!isFinitePoint(p)) continue;
+      const Eigen::Vector3d scaled = Eigen::Vector3d(p.x, p.y, p.z) * inv;
+      if (scaled.cwiseAbs().maxCoeff() > 1e18) continue;  // would overflow a 64-bit index
+      table.add({static_cast<int64_t>(std::floor(scaled.x())),
+                 static_cast<int64_t>(std::floor(scaled.y())),
+                 static_cast<int64_t>(std::floor(scaled.z()))},
+                p);
+    }
+    table.appendCentroids(&out);
+  } else {
+    for (const auto& p : in.points) {
+      if (isFinitePoint(p)) out.points.push_back(p);
+    }
+  }
+  out.width = static_cast<uint32_t>(out.points.size());
+  out.height = 1;
+  out.is_dense = true;
+  return out;
+}
+
+PointCloud preprocess(const PointCloud& in, const PreprocessConfig& config,
+                      PreprocessStats* stats) {
+  PreprocessStats s;
+  s.input = in.points.size();
+  PointCloud kept;
+  kept.header = in.header;
+  kept.points.reserve(in.points.size());
+  const double min_sq = config.min_range_m * config.min_range_m;
+  const double max_sq = config.max_range_m * config.max_range_m;
+  for (const auto& p : in.points) {
+    if (!isFinitePoint(p)) {
+      ++s.non_finite;
+      continue;
+    }
+    const double r_sq = double(p.x) * p.x + double(p.y) * p.y + double(p.z) * p.z;
+    // r == 0 is the "no return" marker of many drivers: dropped even with min_range_m = 0.
+    if (r_sq < min_sq || r_sq > max_sq || r_sq == 0.0) {
+      ++s.out_of_range;
+      continue;
+    }
+    kept.points.push_back(p);
+  }
+  kept.width = static_cast<uint32_t>(kept.points.size());
+  kept.height = 1;
+  PointCloud out = voxelDownsample(kept, config.voxel_size_m);
+  s.output = out.points.size();
+  if (stats) *stats = s;
+  return out;
+}
+
+}  // namespace tacs

@@ -1,0 +1,176 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <vector>
+
+#include "common/box_room.h"
+#include "tacs_graphs/common/config.h"
+#include "tacs_graphs/odometry/lidar_odometry.h"
+
+namespace tacs {
+namespace {
+
+using test::rotationErrorDeg;
+using test::translationError;
+
+// Ground truth of a robot driving through the box room at 0.6 m/s while turning, at 10 Hz.
+Pose3 truePose(double t) {
+  const double yaw_rate = 0.25, speed = 0.6;
+  const double yaw = yaw_rate * t;
+  const double x = 2.5 + speed / yaw_rate * std::sin(yaw);
+  const double y = 3.0 + speed / yaw_rate * (1.0 - std::cos(yaw));
+  return poseFromXyzRpy(x, y, 0.5 + 0.01 * std::sin(t), 0.0, 0.0, yaw);
+}
+
+using Edit = std::function<void(int, PointCloud*, double* stamp)>;
+
+// Runs `count` scans 0.1 s apart (plus `gap_s` of unseen driving before scan `gap_at`); `edit`
+// may change a rendered scan or its stamp. Checks the pose of every accepted scan.
+std::vector<OdometryResult> runSequence(int count, const Edit& edit = nullptr, int gap_at = -1,
+                                        double gap_s = 0.0) {
+  const test::BoxRoom room;
+  LidarOdometry odometry{OdometryConfig()};
+  const Pose3 T_world_odom = truePose(0.0);
+  std::vector<OdometryResult> results;
+  for (int i = 0; i < count; ++i) {
+    const double t = 0.1 * i + (gap_at >= 0 && i >= gap_at ? gap_s : 0.0);
+    double stamp = 100.0 + t;
+    PointCloud cloud = test::renderScan(room, truePose(t), 100 + i, 16, 600);
+    if (edit) edit(i, &cloud, &stamp);
+    results.push_back(odometry.process(stamp, cloud));
+    const OdometryResult& r = results.back();
+    if (!r.ok) continue;
+    const Pose3 truth = T_world_odom.inverse() * truePose(t);
+    EXPECT_LT(translationError(r.T_odom_base, truth), 0.05) << "scan " << i;
+    EXPECT_LT(rotationErrorDeg(r.T_odom_base, truth), 1.0) << "scan " << i;
+  }
+  return results;
+}
+
+int countOk(const std::vector<OdometryResult>& results) {
+  int ok = 0;
+  for (const auto& r : results) ok += r.ok;
+  return ok;
+}
+
+TEST(LidarOdometry, TracksASyntheticMovingSequence) {
+  const auto results = runSequence(25);
+  EXPECT_EQ(countOk(results), 25);
+  ASSERT_TRUE(results.front().is_keyframe);
+  EXPECT_EQ(results.front().keyframe_id, 0u);
+  uint32_t keyframes = 0;
+  for (const auto& r : results) {
+    if (!r.is_keyframe) {
+      EXPECT_FALSE(r.keyframe_cloud);
+      continue;
+    }
+    EXPECT_EQ(r.keyframe_id, keyframes++);
+    ASSERT_TRUE(r.keyframe_cloud);
+    EXPECT_GT(r.keyframe_cloud->size(), 500u);
+    if (r.keyframe_id > 0) {  // a relative-motion information that constrains all 6 axes
+      using Solver = Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>;
+      EXPECT_GT(Solver(r.information).eigenvalues().minCoeff(), 0.0);
+      EXPECT_GT(r.registration.inlier_ratio, 0.5);
+    }
+  }
+  // 1.5 m and 21 deg of motion with keyframes every 0.5 m or 15 deg.
+  EXPECT_GE(keyframes, 3u);
+  EXPECT_LE(keyframes, 8u);
+}
+
+TEST(LidarOdometry, EmptyScanIsRejectedAndTrackingContinues) {
+  const auto results = runSequence(15, [](int i, PointCloud* cloud, double*) {
+    if (i == 6) cloud->clear();
+  });
+  EXPECT_FALSE(results[6].ok);
+  EXPECT_NE(results[6].error.find("empty scan after preprocessing (0 points in"), std::string::npos)
+      << results[6].error;
+  EXPECT_EQ(countOk(results), 14);
+  EXPECT_TRUE(results.back().ok);
+}
+
+TEST(LidarOdometry, AllNanScanIsRejectedWithItsCounts) {
+  const auto results = runSequence(15, [](int i, PointCloud* cloud, double*) {
+    if (i != 6) return;
+    for (auto& p : cloud->points) p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN();
+  });
+  EXPECT_FALSE(results[6].ok);
+  const std::string expected = "empty scan after preprocessing (" +
+                               std::to_string(results[6].preprocess.input) + " points in, " +
+                               std::to_string(results[6].preprocess.input) + " non-finite";
+  EXPECT_GT(results[6].preprocess.input, 1000u);
+  EXPECT_NE(results[6].error.find(expected), std::string::npos) << results[6].error;
+  EXPECT_EQ(countOk(results), 14);
+}
+
+TEST(LidarOdometry, TwoSecondGapResetsTheMotionGuessAndTrackingContinues) {
+  // The robot keeps driving through a 2 s gap in the data (1.2 m and 29 deg of unseen motion).
+  const auto results = runSequence(15, nullptr, 8, 1.9);
+  EXPECT_TRUE(results[8].ok) << results[8].error;
+  EXPECT_TRUE(results[8].motion_prior_reset);
+  EXPECT_FALSE(results[9].motion_prior_reset);
+  EXPECT_EQ(countOk(results), 15);
+}
+
+TEST(LidarOdometry, ScanWithHalfItsPointsStillTracks) {
+  const auto results = runSequence(15, [](int i, PointCloud* cloud, double*) {
+    if (i != 7) return;
+    PointCloud half;
+    for (const auto& p : cloud->points) {
+      if (p.y > 0.0f) half.push_back(p);  // the left half of the field of view
+    }
+    EXPECT_NEAR(half.size(), cloud->size() / 2.0, cloud->size() / 8.0);
+    *cloud = half;
+  });
+  EXPECT_TRUE(results[7].ok) << results[7].error;
+  EXPECT_EQ(countOk(results), 15);
+}
+
+TEST(LidarOdometry, NonIncreasingStampIsRejected) {
+  const auto results = runSequence(12, [](int i, PointCloud*, double* stamp) {
+    if (i == 5) *stamp -= 0.15;  // earlier than scan 4
+  });
+  EXPECT_FALSE(results[5].ok);
+  EXPECT_NE(results[5].error.find("is not after the previous scan"), std::string::npos);
+  EXPECT_EQ(countOk(results), 11);
+}
+
+TEST(LidarOdometry, TooFewPointsAreRejectedBeforeTheFirstKeyframe) {
+  LidarOdometry odometry{OdometryConfig()};
+  PointCloud few;
+  for (int i = 0; i < 20; ++i) few.push_back(pcl::PointXYZI(0.0f));
+  for (auto& p : few.points) p.x = 1.0f + 0.3f * (&p - &few.points[0]);
+  const OdometryResult r = odometry.process(1.0, few);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("too few points after preprocessing"), std::string::npos) << r.error;
+  EXPECT_EQ(odometry.numKeyframes(), 0u);
+  EXPECT_FALSE(odometry.localMap());
+}
+
+std::string validationError(const OdometryConfig& config) {
+  try {
+    config.validate();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(OdometryConfig, ValidateNamesTheBadField) {
+  EXPECT_EQ(validationError(OdometryConfig()), "");
+  OdometryConfig config;
+  config.gicp.k_neighbors = 2;
+  EXPECT_NE(validationError(config).find("odometry.gicp.k_neighbors"), std::string::npos);
+  config = OdometryConfig();
+  config.preprocess.max_range_m = 0.1;
+  EXPECT_NE(validationError(config).find("odometry.preprocess.max_range_m"), std::string::npos);
+  config = OdometryConfig();
+  config.min_inlier_ratio = 1.5;
+  EXPECT_NE(validationError(config).find("odometry.min_inlier_ratio"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace tacs

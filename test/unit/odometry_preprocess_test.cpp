@@ -1,0 +1,94 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "tacs_graphs/odometry/preprocess.h"
+
+namespace tacs {
+namespace {
+
+pcl::PointXYZI point(float x, float y, float z, float intensity = 0.0f) {
+  pcl::PointXYZI p;
+  p.x = x;
+  p.y = y;
+  p.z = z;
+  p.intensity = intensity;
+  return p;
+}
+
+TEST(Preprocess, DropsNonFiniteZeroAndOutOfRangePoints) {
+  PointCloud in;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  in.push_back(point(nan, 1, 1));
+  in.push_back(point(1, inf, 1));
+  in.push_back(point(1, 1, -inf));
+  in.push_back(point(0, 0, 0));    // "no return"
+  in.push_back(point(0.1, 0, 0));  // closer than min_range
+  in.push_back(point(50, 0, 0));   // beyond max_range
+  in.push_back(point(3, 0, 0));    // kept
+  in.push_back(point(0, -7, 1));   // kept
+  PreprocessConfig config;
+  config.voxel_size_m = 0.0;
+  PreprocessStats stats;
+  const PointCloud out = preprocess(in, config, &stats);
+  EXPECT_EQ(stats.input, 8u);
+  EXPECT_EQ(stats.non_finite, 3u);
+  EXPECT_EQ(stats.out_of_range, 3u);
+  EXPECT_EQ(stats.output, 2u);
+  ASSERT_EQ(out.size(), 2u);
+  for (const auto& p : out.points) {
+    const double r = std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
+    EXPECT_GE(r, config.min_range_m);
+    EXPECT_LE(r, config.max_range_m);
+  }
+}
+
+TEST(Preprocess, ZeroPointsAreDroppedEvenWithoutMinimumRange) {
+  PointCloud in;
+  in.push_back(point(0, 0, 0));
+  in.push_back(point(1, 0, 0));
+  PreprocessConfig config;
+  config.min_range_m = 0.0;
+  PreprocessStats stats;
+  EXPECT_EQ(preprocess(in, config, &stats).size(), 1u);
+  EXPECT_EQ(stats.out_of_range, 1u);
+}
+
+TEST(Preprocess, EmptyAndAllNanInputsGiveEmptyOutput) {
+  PreprocessStats stats;
+  EXPECT_TRUE(preprocess(PointCloud(), PreprocessConfig(), &stats).empty());
+  EXPECT_EQ(stats.input, 0u);
+  PointCloud nans;
+  for (int i = 0; i < 100; ++i) nans.push_back(point(NAN, NAN, NAN));
+  EXPECT_TRUE(preprocess(nans, PreprocessConfig(), &stats).empty());
+  EXPECT_EQ(stats.non_finite, 100u);
+  EXPECT_EQ(stats.output, 0u);
+}
+
+TEST(VoxelDownsample, AveragesPointsOfOneVoxelAndKeepsOthersApart) {
+  PointCloud in;
+  for (int i = 0; i < 10; ++i) in.push_back(point(1.01f + 0.01f * i, 2.05f, 3.05f, i));
+  in.push_back(point(5.05f, 2.05f, 3.05f, 7));
+  const PointCloud out = voxelDownsample(in, 0.2);
+  ASSERT_EQ(out.size(), 2u);
+  const auto& a = out.points[0].x < 3 ? out.points[0] : out.points[1];
+  EXPECT_NEAR(a.x, 1.055, 1e-4);
+  EXPECT_NEAR(a.y, 2.05, 1e-4);
+  EXPECT_NEAR(a.intensity, 4.5, 1e-4);
+}
+
+TEST(VoxelDownsample, HandlesLargeExtentsWithoutMergingDistantPoints) {
+  // 2e5 m across at 5 cm voxels: 4e6 voxels per axis would overflow a 32-bit index grid.
+  PointCloud in;
+  in.push_back(point(-1e5f, 0, 0));
+  in.push_back(point(1e5f, 0, 0));
+  in.push_back(point(0, 1e5f, -1e5f));
+  in.push_back(point(0, 1e5f, -1e5f));
+  const PointCloud out = voxelDownsample(in, 0.05);
+  EXPECT_EQ(out.size(), 3u);
+}
+
+}  // namespace
+}  // namespace tacs
