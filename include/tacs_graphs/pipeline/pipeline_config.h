@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "tacs_graphs/backend/factor_graph.h"
+#include "tacs_graphs/backend/map_export.h"
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/frames.h"
 #include "tacs_graphs/odometry/lidar_odometry.h"
@@ -20,6 +21,7 @@ struct PipelineConfig {
   WallsConfig walls;
   BackendConfig backend;
   TraversabilityConfig traversability;
+  MapExportConfig map_export;
 
   template <class V>
   void visit(V& v) {
@@ -28,6 +30,7 @@ struct PipelineConfig {
     v("walls", walls);
     v("backend", backend);
     v("traversability", traversability);
+    v("map_export", map_export);
   }
   void validate() const;
 };

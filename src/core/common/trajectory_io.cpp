@@ -5,19 +5,25 @@
 #include <fstream>
 #include <sstream>
 
+#include "tacs_graphs/common/file_io.h"
+
 namespace tacs {
 
 void writeTum(const std::string& path, const Trajectory& trajectory) {
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) throw TrajectoryIoError(path + ": cannot open for writing");
+  std::string text;
+  char line[256];
   for (const auto& sp : trajectory) {
     const Eigen::Vector3d t = sp.pose.translation();
     const Eigen::Quaterniond q(sp.pose.rotation());
-    std::fprintf(f, "%.9f %.9g %.9g %.9g %.9g %.9g %.9g %.9g\n", sp.stamp, t.x(), t.y(), t.z(),
-                 q.x(), q.y(), q.z(), q.w());
+    std::snprintf(line, sizeof(line), "%.9f %.9g %.9g %.9g %.9g %.9g %.9g %.9g\n", sp.stamp, t.x(),
+                  t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
+    text += line;
   }
-  const bool ok = std::ferror(f) == 0;
-  if (std::fclose(f) != 0 || !ok) throw TrajectoryIoError(path + ": write failed");
+  try {
+    writeFileAtomically(path, text);  // a crash never leaves a half-written trajectory
+  } catch (const std::runtime_error& e) {
+    throw TrajectoryIoError(e.what());
+  }
 }
 
 Trajectory readTum(const std::string& path) {

@@ -8,6 +8,7 @@ void PipelineConfig::validate() const {
   walls.validate();
   backend.validate();
   traversability.validate();
+  map_export.validate();
 }
 
 LoadedPipelineConfig loadPipelineConfig(const std::string& yaml_path) {

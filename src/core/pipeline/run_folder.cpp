@@ -1,0 +1,63 @@
+#include "tacs_graphs/pipeline/run_folder.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tacs_graphs/common/file_io.h"
+#include "tacs_graphs/common/trajectory_io.h"
+#include "tacs_graphs/viz/scene_graph_drawing.h"
+
+namespace tacs {
+
+nlohmann::json timingJson(const Pipeline& pipeline, const RunInfo& info) {
+  const PipelineStats& stats = pipeline.stats();
+  nlohmann::json j;
+  j["source"] = info.source;
+  j["scans"] = stats.scans;
+  j["rejected_scans"] = stats.rejected_scans;
+  j["keyframes"] = stats.keyframes;
+  j["wall_observations"] = stats.wall_observations;
+  j["wall_time_s"] = info.wall_time_s;
+  j["scans_per_s"] = info.wall_time_s > 0 ? stats.scans / info.wall_time_s : 0.0;
+  nlohmann::json stages = nlohmann::json::object();
+  for (const auto& [name, e] : pipeline.stageTimes().entries()) {
+    stages[name] = {{"total_ms", e.total_ms},
+                    {"mean_ms", e.calls ? e.total_ms / e.calls : 0.0},
+                    {"max_ms", e.max_ms},
+                    {"calls", e.calls}};
+  }
+  j["stages_ms"] = stages;
+  j["t_fgo_s"] = pipeline.fgoSeconds();
+  j["t_ld_s"] = pipeline.ldSeconds();
+  j["optimizations"] = pipeline.backend().optimizations();
+  return j;
+}
+
+void writeTopdown(const std::string& path, const SceneGraph& graph, const PointCloud& map_points,
+                  double resolution_m) {
+  Eigen::Vector2d lo, hi;
+  viz::sceneGraphBounds(graph, nullptr, 2.0, &lo, &hi);
+  // A picture of at most about 4000 px a side, whatever the extent of the run.
+  const double extent = std::max((hi - lo).maxCoeff(), 1.0);
+  const double resolution = std::max(resolution_m, extent / 4000.0);
+  viz::Canvas canvas(lo, hi, resolution);
+  viz::drawSceneGraph(graph, &map_points, &canvas);
+  canvas.savePng(path);
+}
+
+void writeRunFolder(const std::string& dir, const Pipeline& pipeline, const RunInfo& info) {
+  ensureDirectory(dir);
+  const SceneGraph graph = pipeline.sceneGraph();
+  const MapExportConfig& map_config = pipeline.config().map_export;
+  writeTum(dir + "/trajectory_tum.txt", pipeline.keyframeTrajectory());
+  writeTum(dir + "/odometry_tum.txt", pipeline.odometryTrajectory());
+  graph.save(dir + "/scene_graph.json");
+  writeFileAtomically(dir + "/timing.json", timingJson(pipeline, info).dump(2) + "\n");
+  writeFileAtomically(dir + "/config.json", configToJson(pipeline.config()).dump(2) + "\n");
+  const PointCloud map = buildMapCloud(graph, pipeline.keyframeClouds(), map_config.cloud_voxel_m);
+  writePcdAtomically(dir + "/map.pcd", map);
+  writeOctomap(dir + "/map.bt", graph, pipeline.keyframeClouds(), map_config);
+  writeTopdown(dir + "/topdown.png", graph, map, map_config.topdown_resolution_m);
+}
+
+}  // namespace tacs

@@ -1,0 +1,92 @@
+#include <gtest/gtest.h>
+#include <pcl/common/transforms.h>
+
+#include <filesystem>
+#include <limits>
+
+#include "tacs_graphs/common/trajectory_io.h"
+#include "tacs_graphs/eval/trajectory_metrics.h"
+#include "tacs_graphs/pipeline/run_folder.h"
+#include "tacs_graphs/sim/scan_stream.h"
+#include "test_paths.h"
+
+namespace tacs {
+namespace {
+
+/// Streams the first `seconds` of the smoke world through a pipeline.
+struct SmokeRun {
+  explicit SmokeRun(double seconds) : pipeline(PipelineConfig{}) {
+    sim::SimOptions options;
+    options.duration_s = seconds;
+    sim::ScanStream stream(sim::loadWorld(test::sourceDir() + "/worlds/smoke.json"), options);
+    const Eigen::Affine3f T_base_sensor = stream.baseToSensor().cast<float>();
+    sim::SimScan scan;
+    while (stream.next(&scan)) {
+      PointCloud in_base;
+      pcl::transformPointCloud(sim::toPointCloud(scan), in_base, T_base_sensor);
+      pipeline.processScan(scan.stamp, in_base);
+    }
+    pipeline.finish();
+    ground_truth = stream.groundTruth();
+  }
+  Pipeline pipeline;
+  Trajectory ground_truth;
+};
+
+TEST(Pipeline, TracksTheSmokeWorldAndMapsItsWalls) {
+  SmokeRun run(8.0);
+  const PipelineStats& stats = run.pipeline.stats();
+  EXPECT_EQ(stats.rejected_scans, 0u) << stats.first_rejection;
+  EXPECT_GT(stats.keyframes, 10u);
+  EXPECT_EQ(run.pipeline.odometryTrajectory().size(), stats.scans);
+  const AteResult ate = computeAte(run.pipeline.keyframeTrajectory(), run.ground_truth);
+  EXPECT_LT(ate.rmse, 0.10);
+  // Room A and B walls and the corridor side seen in 8 s: several walls, no duplicates explosion.
+  const size_t walls = run.pipeline.sceneGraph().walls.size();
+  EXPECT_GE(walls, 4u);
+  EXPECT_LE(walls, 14u);
+  EXPECT_GT(run.pipeline.backend().optimizations(), 0);
+}
+
+TEST(Pipeline, RejectsBadScansAndKeepsGoing) {
+  Pipeline pipeline{PipelineConfig{}};
+  PointCloud empty;
+  ScanOutcome outcome = pipeline.processScan(1.0, empty);
+  EXPECT_FALSE(outcome.accepted);
+  EXPECT_FALSE(outcome.error.empty());
+  PointCloud nans;
+  for (int i = 0; i < 500; ++i) {
+    pcl::PointXYZI p;
+    p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN();
+    nans.push_back(p);
+  }
+  outcome = pipeline.processScan(1.1, nans);
+  EXPECT_FALSE(outcome.accepted);
+  EXPECT_EQ(pipeline.stats().rejected_scans, 2u);
+  EXPECT_EQ(pipeline.stats().keyframes, 0u);
+  pipeline.finish();  // nothing to optimise, no throw
+  EXPECT_TRUE(pipeline.sceneGraph().keyframes.empty());
+}
+
+TEST(RunFolder, WritesEveryFileOfTheContract) {
+  SmokeRun run(3.0);
+  const std::string dir = ::testing::TempDir() + "/tacs_run_folder_test";
+  std::filesystem::remove_all(dir);
+  writeRunFolder(dir, run.pipeline, {"smoke", 1.5});
+  for (const char* name : {"trajectory_tum.txt", "odometry_tum.txt", "scene_graph.json",
+                           "timing.json", "config.json", "map.pcd", "map.bt", "topdown.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir + "/" + name)) << name;
+  }
+  const SceneGraph loaded = SceneGraph::load(dir + "/scene_graph.json");
+  EXPECT_EQ(loaded.keyframes.size(), run.pipeline.stats().keyframes);
+  EXPECT_EQ(readTum(dir + "/trajectory_tum.txt").size(), run.pipeline.stats().keyframes);
+  EXPECT_EQ(readTum(dir + "/odometry_tum.txt").size(), run.pipeline.stats().scans);
+  const nlohmann::json timing = timingJson(run.pipeline, {"smoke", 1.5});
+  EXPECT_EQ(timing["scans"].get<size_t>(), run.pipeline.stats().scans);
+  EXPECT_TRUE(timing["stages_ms"].contains("odometry"));
+  EXPECT_TRUE(timing.contains("t_fgo_s"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace tacs
