@@ -6,7 +6,7 @@
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/eval/eval_report.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
-#include "test_paths.h"
+#include "common/test_paths.h"
 
 namespace tacs {
 namespace {
@@ -69,11 +69,11 @@ TEST(EvalExperiment, TransformsWallsAndRoomsWithTheAlignment) {
   const Pose3 T = poseFromXyzRpy(5, 0, 0, 0, 0, M_PI / 2);  // rotate 90 deg, then shift x by 5
   const SceneGraph t = transformSceneGraph(g, T);
   // x = 2 becomes y = 2 after the rotation; the shift moves it along x only.
-  EXPECT_NEAR(t.walls[0].normal.y(), 1.0, 1e-12);
-  EXPECT_NEAR(t.walls[0].d, -2.0, 1e-12);
-  EXPECT_NEAR(t.walls[0].endpoints[1].x(), 5 - 3, 1e-12);
-  EXPECT_NEAR(t.rooms[0].center.x(), 4.0, 1e-12);
-  EXPECT_NEAR(t.rooms[0].free_space[0].y(), 1.0, 1e-12);
+  EXPECT_NEAR(t.walls.at(0).normal.y(), 1.0, 1e-12);
+  EXPECT_NEAR(t.walls.at(0).d, -2.0, 1e-12);
+  EXPECT_NEAR(t.walls.at(0).endpoints[1].x(), 5 - 3, 1e-12);
+  EXPECT_NEAR(t.rooms.at(0).center.x(), 4.0, 1e-12);
+  EXPECT_NEAR(t.rooms.at(0).free_space[0].y(), 1.0, 1e-12);
 }
 
 }  // namespace

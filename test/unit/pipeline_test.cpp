@@ -8,7 +8,7 @@
 #include "tacs_graphs/eval/trajectory_metrics.h"
 #include "tacs_graphs/pipeline/run_folder.h"
 #include "tacs_graphs/sim/scan_stream.h"
-#include "test_paths.h"
+#include "common/test_paths.h"
 
 namespace tacs {
 namespace {
