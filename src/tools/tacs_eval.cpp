@@ -28,7 +28,7 @@ void printUsage() {
   std::cout
       << "Usage: tacs_eval [--worlds A.json,B.json,...] [--methods YAML] [--config YAML]\n"
          "                 [--trials K] [--jobs N] [--duration S] --out DIR\n"
-         "Runs every method of YAML (default config/eval_methods.yaml) on every world (default:\n"
+         "Runs every method of YAML (default config/eval/methods.yaml) on every world (default:\n"
          "every worlds/*.json but smoke) K times (noise seeds 1..K, default 5), N runs at a time\n"
          "(default: the number of cores), and writes DIR/tables.md and DIR/figures/*.png; run\n"
          "folders go to DIR/runs/<world>/<method>/trial<k>/ and finished ones are not run again.\n"
@@ -54,7 +54,7 @@ std::string selfDir() { return fs::canonical("/proc/self/exe").parent_path().str
 
 Options parse(int argc, char** argv) {
   Options o;
-  o.methods = sourceDir() + "/config/eval_methods.yaml";
+  o.methods = sourceDir() + "/config/eval/methods.yaml";
   o.config = sourceDir() + "/config/default.yaml";
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];

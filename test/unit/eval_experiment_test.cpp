@@ -22,7 +22,7 @@ TEST(EvalExperiment, MergesNestedOverridesIntoTheBase) {
 
 TEST(EvalExperiment, ShippedMethodsLoadAndMakeValidConfigurations) {
   const std::string dir = test::sourceDir() + "/config";
-  const auto methods = loadEvalMethods(dir + "/eval_methods.yaml");
+  const auto methods = loadEvalMethods(dir + "/eval/methods.yaml");
   ASSERT_FALSE(methods.empty());
   const nlohmann::json base = loadYamlAsJson(dir + "/default.yaml");
   for (const auto& m : methods) {

@@ -1,4 +1,4 @@
-// Every file in config/ must load and validate, with no unknown key.
+// Every file in config/ (not its subfolders, which hold other formats) must load and validate, with no unknown key.
 #include <gtest/gtest.h>
 
 #include <filesystem>

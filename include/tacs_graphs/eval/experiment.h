@@ -1,4 +1,4 @@
-// Experiments of tacs_eval: the method configurations compared (config/eval_methods.yaml) and the
+// Experiments of tacs_eval: the method configurations compared (config/eval/methods.yaml) and the
 // scores of one finished run folder (DESIGN.md "Evaluation").
 #pragma once
 

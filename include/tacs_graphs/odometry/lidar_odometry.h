@@ -28,6 +28,9 @@ struct OdometryConfig {
   double min_inlier_ratio = 0.3;     // registrations with fewer inliers are rejected
   double max_correction_m = 1.0;     // [m] a registration may move the guess at most this far
   double max_correction_deg = 30.0;  // [deg] ... and rotate it at most this much
+  // [m] voxel of the keyframe cloud handed to traversability and walls (0: the odometry's own
+  // preprocess.voxel_size_m grid)
+  double keyframe_cloud_voxel_m = 0.1;
 
   template <class V>
   void visit(V& v) {
@@ -43,6 +46,7 @@ struct OdometryConfig {
     v("min_inlier_ratio", min_inlier_ratio);
     v("max_correction_m", max_correction_m);
     v("max_correction_deg", max_correction_deg);
+    v("keyframe_cloud_voxel_m", keyframe_cloud_voxel_m);
   }
   void validate() const;
 };
@@ -54,7 +58,8 @@ struct OdometryResult {
   Pose3 T_odom_base = Pose3::Identity();  // the scan's pose; the last good pose when !ok
   bool is_keyframe = false;
   uint32_t keyframe_id = 0;
-  PointCloud::Ptr keyframe_cloud;  // downsampled scan in the base frame (keyframes only)
+  /// Scan in the base frame at keyframe_cloud_voxel_m (keyframes only).
+  PointCloud::Ptr keyframe_cloud;
   /// Information of the motion since the previous keyframe (keyframes only; zero for the first),
   /// order x y z rx ry rz, perturbation in this keyframe's frame. GICP Hessian scale.
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
@@ -94,6 +99,7 @@ class LidarOdometry {
   void addKeyframe(OdometryResult* result, const GicpCloud::ConstPtr& scan_gicp,
                    const PointCloud::Ptr& cloud);
   void rebuildLocalMap();
+  void attachKeyframeCloud(const PointCloud& scan, OdometryResult* result) const;
 
   OdometryConfig config_;
   bool initialized_ = false;

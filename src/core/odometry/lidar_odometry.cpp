@@ -25,6 +25,7 @@ void OdometryConfig::validate() const {
                 "must be in [0, 1]");
   requireConfig(max_correction_m > 0.0, "odometry.max_correction_m", "must be > 0");
   requireConfig(max_correction_deg > 0.0, "odometry.max_correction_deg", "must be > 0");
+  requireConfig(keyframe_cloud_voxel_m >= 0.0, "odometry.keyframe_cloud_voxel_m", "must be >= 0");
 }
 
 namespace {
@@ -141,6 +142,7 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan) {
     last_pose_ = Pose3::Identity();
     result.T_odom_base = last_pose_;
     addKeyframe(&result, scan_gicp, cloud);
+    attachKeyframeCloud(scan, &result);
     return finish("");
   }
 
@@ -184,8 +186,23 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan) {
   last_pose_ = reg.T_target_source;
   last_stamp_ = stamp;
   result.T_odom_base = last_pose_;
-  if (isKeyframe(last_pose_)) addKeyframe(&result, scan_gicp, cloud);
+  if (isKeyframe(last_pose_)) {
+    addKeyframe(&result, scan_gicp, cloud);
+    attachKeyframeCloud(scan, &result);
+  }
   return finish("");
+}
+
+void LidarOdometry::attachKeyframeCloud(const PointCloud& scan, OdometryResult* result) const {
+  // Traversability needs several points per tri-grid node and walls a dense inlier band: the
+  // keyframe cloud handed on is finer than the odometry's own grid.
+  if (config_.keyframe_cloud_voxel_m <= 0.0 ||
+      config_.keyframe_cloud_voxel_m == config_.preprocess.voxel_size_m) {
+    return;
+  }
+  PreprocessConfig fine = config_.preprocess;
+  fine.voxel_size_m = config_.keyframe_cloud_voxel_m;
+  result->keyframe_cloud.reset(new PointCloud(preprocess(scan, fine)));
 }
 
 }  // namespace tacs

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "tacs_graphs/odometry/preprocess.h"
+
 namespace tacs {
 
 namespace {
@@ -38,7 +40,10 @@ void Pipeline::processKeyframe(const OdometryResult& odom, ScanOutcome* outcome)
   outcome->keyframe = true;
   outcome->keyframe_id = odom.keyframe_id;
   ++stats_.keyframes;
-  keyframe_clouds_[odom.keyframe_id] = odom.keyframe_cloud;
+  // Kept for the map, the OctoMap and loop closure at the odometry's grid: a long run keeps
+  // thousands of keyframes.
+  keyframe_clouds_[odom.keyframe_id] = PointCloud::ConstPtr(new PointCloud(
+      voxelDownsample(*odom.keyframe_cloud, config_.odometry.preprocess.voxel_size_m)));
   backend_.addKeyframe(odom.keyframe_id, odom.stamp, odom.T_odom_base, odom.information);
 
   // Walls (Sec. III-B-1) from the keyframe's downsampled scan, associated to map landmarks.
