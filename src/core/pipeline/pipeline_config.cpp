@@ -8,6 +8,7 @@ void PipelineConfig::validate() const {
   walls.validate();
   backend.validate();
   traversability.validate();
+  rooms.validate();
 }
 
 LoadedPipelineConfig loadPipelineConfig(const std::string& yaml_path) {
