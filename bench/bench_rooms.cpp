@@ -171,11 +171,17 @@ void runWorld(const std::string& path, const Args& args) {
       }
       for (const auto& room : runs[m].rooms) {
         std::printf(
-            "|   %-15s | %-5s | room %2u %-8s centre (%6.2f, %6.2f) walls %zu points %zu kf %zu "
-            "|\n",
+            "|   %-15s | %-5s | room %2u %-8s centre (%6.2f, %6.2f) points %zu kf %zu walls",
             world.name.c_str(), runs[m].method.c_str(), room.id, tacs::roomKindName(room.kind),
-            room.center.x(), room.center.y(), room.wall_ids.size(), room.free_space.size(),
-            room.keyframe_ids.size());
+            room.center.x(), room.center.y(), room.free_space.size(), room.keyframe_ids.size());
+        for (uint32_t w : room.wall_ids) {
+          const auto it = walls.landmarks().find(w);
+          if (it == walls.landmarks().end()) continue;
+          const Eigen::Vector2d mid = it->second.midpoint();
+          std::printf(" %u(n %.0f %.0f at %.2f %.2f)", w, it->second.normal.x(),
+                      it->second.normal.y(), mid.x(), mid.y());
+        }
+        std::printf(" |\n");
       }
     }
     std::fflush(stdout);

@@ -31,6 +31,9 @@ struct TacsFreeSpaceConfig {
   /// T_inside of a keyframe is its room-graph component within this distance (xy) of the robot,
   /// the reach of one keyframe's local traversable graph; 0 takes the whole component [m].
   double local_radius = 10.0;
+  /// Traversable but unsafe nodes within this distance of a room's safe nodes join the room
+  /// (its free space then reaches the walls); 0 keeps the safe nodes only [m].
+  double border_distance = 0.6;
 
   template <class V>
   void visit(V& v) {
@@ -42,6 +45,7 @@ struct TacsFreeSpaceConfig {
     v("max_keyframes_per_observation", max_keyframes_per_observation);
     v("robot_search_radius", robot_search_radius);
     v("local_radius", local_radius);
+    v("border_distance", border_distance);
   }
   void validate() const;
 };
@@ -85,6 +89,9 @@ struct RoomExtractionConfig {
   /// A wall bounds the region when its adjacent free-space points cover at least this length
   /// along it (0.2 m bins), so a region touching a wall's end only is not bounded by it [m].
   double min_adjacent_length = 1.0;
+  /// A face with free space right behind it along more than this share of its adjacent length
+  /// stands inside the region (furniture, a pillar), it does not bound it [-].
+  double max_behind_share = 0.5;
   /// Walls are searched this far past their extent along the wall [m].
   double extent_margin = 0.5;
   /// Facing walls must be at least this far apart [m].
@@ -98,6 +105,7 @@ struct RoomExtractionConfig {
   void visit(V& v) {
     v("adjacency_distance", adjacency_distance);
     v("min_adjacent_length", min_adjacent_length);
+    v("max_behind_share", max_behind_share);
     v("extent_margin", extent_margin);
     v("min_width", min_width);
     v("min_free_space_points", min_free_space_points);

@@ -22,6 +22,9 @@
 //    current room graph, so free space seen through a door before the door was cut stays out.
 //  - After `max_keyframes_per_observation` keyframes the region is also emitted (and restarted),
 //    so a robot staying in one room still reports it; the room map merges the repeats.
+// The emitted free space also holds the traversable nodes that are too close to walls or
+// furniture to be safe, within `border_distance` of the room's safe nodes (reached without
+// crossing a doorway), so a room's free space reaches its walls as its floor does.
 // flush() emits what is accumulated (end of a sequence).
 #pragma once
 
@@ -79,13 +82,15 @@ class TacsFreeSpace {
 
  private:
   struct Labels {
-    std::vector<int> label;  // component of each map node in the room graph, -1: not safe
+    std::vector<int> label;       // component of each map node in the room graph, -1: not safe
+    std::vector<char> edge_open;  // per map edge: 0 when it goes through a doorway
     size_t doorways = 0;
   };
   Labels labelRoomGraph(const TraversableMap& map,
                         const std::map<uint32_t, WallLandmark>& landmarks) const;
   int labelAt(const TraversableMap& map, const Labels& labels, const Eigen::Vector3d& p) const;
   std::optional<FreeSpaceRegion> emit(const TraversableMap& map, const Labels& labels);
+  void attachBorder(const TravGraph& g, const Labels& labels, std::vector<char>* in_room) const;
 
   struct Accumulated {
     uint32_t keyframe_id;

@@ -16,33 +16,48 @@ constexpr int kYMinus = static_cast<int>(WallDirection::kYMinus);
 
 struct Candidate {
   uint32_t id;
-  int adjacent;
+  int adjacent;     // score: adjacent length in bins, then adjacent points
+  int points;       // adjacent points
   double position;  // coordinate of the wall along the building axis it is orthogonal to [m]
 };
 
+constexpr double kBin = 0.2;  // along-wall bins of the adjacency coverage [m]
+
 struct Adjacency {
   int points = 0;        // adjacent free-space points
-  double covered = 0.0;  // length along the wall they cover [m]
+  int covered_bins = 0;  // bins along the wall holding adjacent points
+  int behind_bins = 0;   // bins holding free space just behind the wall
+  double covered() const { return covered_bins * kBin; }
 };
 
 // Free-space points in front of the wall (its normal faces the room), within the adjacency
-// distance and along its extent: the "adjacent points" of paper Sec. III-B-3.
+// distance and along its extent: the "adjacent points" of paper Sec. III-B-3. Coverage along
+// the wall, rather than the raw count, ranks walls, so a short furniture face in the middle of
+// the free space does not outrank the room's wall behind the furniture; free space right behind
+// a face (within the adjacency distance) marks a face inside the region, not one bounding it.
 Adjacency adjacency(const WallLandmark& w, const std::vector<Eigen::Vector3d>& pts,
                     const RoomExtractionConfig& c) {
-  constexpr double kBin = 0.2;  // [m]
   const Eigen::Vector2d axis = wallAxis(w.normal);
   const double len = w.length();
-  std::vector<char> bins(static_cast<size_t>((len + 2.0 * c.extent_margin) / kBin) + 1, 0);
+  const size_t n_bins = static_cast<size_t>((len + 2.0 * c.extent_margin) / kBin) + 1;
+  std::vector<char> front(n_bins, 0), behind(n_bins, 0);
   Adjacency a;
   for (const auto& p : pts) {
     const double s = w.normal.dot(p) + w.d;
-    if (s <= 0.0 || s > c.adjacency_distance) continue;
+    if (std::abs(s) > c.adjacency_distance) continue;
     const double t = (p.head<2>() - w.endpoints[0]).dot(axis) + c.extent_margin;
     if (t < 0.0 || t > len + 2.0 * c.extent_margin) continue;
-    ++a.points;
-    bins[static_cast<size_t>(t / kBin)] = 1;
+    if (s > 0.0) {
+      ++a.points;
+      front[static_cast<size_t>(t / kBin)] = 1;
+    } else {
+      behind[static_cast<size_t>(t / kBin)] = 1;
+    }
   }
-  for (char b : bins) a.covered += b ? kBin : 0.0;
+  for (size_t i = 0; i < n_bins; ++i) {
+    a.covered_bins += front[i];
+    a.behind_bins += behind[i];
+  }
   return a;
 }
 
@@ -125,11 +140,12 @@ RoomExtractionResult extractRoom(const std::vector<Eigen::Vector3d>& free_space,
   std::array<std::vector<Candidate>, 4> candidates;
   for (const auto& [id, wall] : landmarks) {
     const Adjacency a = adjacency(wall, free_space, config);
-    if (a.points == 0 || a.covered < config.min_adjacent_length) continue;
-    const int adjacent = a.points;
+    if (a.points == 0 || a.covered() < config.min_adjacent_length) continue;
+    if (a.behind_bins > config.max_behind_share * a.covered_bins) continue;
+    const int adjacent = a.covered_bins * 100000 + std::min(a.points, 99999);
     const int dir = static_cast<int>(classifyWall(wall.normal, axes));
     const Eigen::Vector2d& axis = dir == kXPlus || dir == kXMinus ? x_axis : y_axis;
-    candidates[dir].push_back({id, adjacent, wall.midpoint().dot(axis)});
+    candidates[dir].push_back({id, adjacent, a.points, wall.midpoint().dot(axis)});
   }
   const Pair px = bestPair(candidates[kXPlus], candidates[kXMinus], free_space, x_axis, config);
   const Pair py = bestPair(candidates[kYPlus], candidates[kYMinus], free_space, y_axis, config);
@@ -145,14 +161,14 @@ RoomExtractionResult extractRoom(const std::vector<Eigen::Vector3d>& free_space,
   if (has_x) {
     room.walls[kXPlus] = static_cast<int>(candidates[kXPlus][px.low].id);
     room.walls[kXMinus] = static_cast<int>(candidates[kXMinus][px.high].id);
-    result.adjacent_points[kXPlus] = candidates[kXPlus][px.low].adjacent;
-    result.adjacent_points[kXMinus] = candidates[kXMinus][px.high].adjacent;
+    result.adjacent_points[kXPlus] = candidates[kXPlus][px.low].points;
+    result.adjacent_points[kXMinus] = candidates[kXMinus][px.high].points;
   }
   if (has_y) {
     room.walls[kYPlus] = static_cast<int>(candidates[kYPlus][py.low].id);
     room.walls[kYMinus] = static_cast<int>(candidates[kYMinus][py.high].id);
-    result.adjacent_points[kYPlus] = candidates[kYPlus][py.low].adjacent;
-    result.adjacent_points[kYMinus] = candidates[kYMinus][py.high].adjacent;
+    result.adjacent_points[kYPlus] = candidates[kYPlus][py.low].points;
+    result.adjacent_points[kYMinus] = candidates[kYMinus][py.high].points;
   }
   // Start from the free-space centre so a corridor's along-wall coordinate is defined.
   const Eigen::Vector2d c = room.freeSpaceCentroid();

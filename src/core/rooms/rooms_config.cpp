@@ -17,6 +17,7 @@ void TacsFreeSpaceConfig::validate() const {
                 "must be >= 1");
   requireConfig(robot_search_radius > 0.0, p + "robot_search_radius", "must be > 0");
   requireConfig(local_radius >= 0.0, p + "local_radius", "must be >= 0");
+  requireConfig(border_distance >= 0.0, p + "border_distance", "must be >= 0");
 }
 
 void VoxelFreeSpaceConfig::validate() const {
@@ -36,6 +37,7 @@ void RoomExtractionConfig::validate() const {
   const std::string p = "rooms.extraction.";
   requireConfig(adjacency_distance > 0.0, p + "adjacency_distance", "must be > 0");
   requireConfig(min_adjacent_length >= 0.0, p + "min_adjacent_length", "must be >= 0");
+  requireConfig(max_behind_share >= 0.0, p + "max_behind_share", "must be >= 0");
   requireConfig(extent_margin >= 0.0, p + "extent_margin", "must be >= 0");
   requireConfig(min_width > 0.0, p + "min_width", "must be > 0");
   requireConfig(min_free_space_points >= 1, p + "min_free_space_points", "must be >= 1");

@@ -109,17 +109,19 @@ TacsFreeSpace::Labels TacsFreeSpace::labelRoomGraph(
     }
   }
   DisjointSets sets(g.nodes.size());
-  for (const auto& [a, b] : g.edges) {
-    if (!g.nodes[a].safe || !g.nodes[b].safe) continue;
-    bool cut = false;
+  labels.edge_open.assign(g.edges.size(), 1);
+  for (size_t e = 0; e < g.edges.size(); ++e) {
+    const auto [a, b] = g.edges[e];
     for (int k : near[a]) {
       if (segmentsIntersect(g.nodes[a].position.head<2>(), g.nodes[b].position.head<2>(),
                             cuts[k].first, cuts[k].second)) {
-        cut = true;
+        labels.edge_open[e] = 0;
         break;
       }
     }
-    if (!cut) sets.unite(static_cast<int>(a), static_cast<int>(b));
+    if (labels.edge_open[e] && g.nodes[a].safe && g.nodes[b].safe) {
+      sets.unite(static_cast<int>(a), static_cast<int>(b));
+    }
   }
   labels.label.assign(g.nodes.size(), -1);
   for (size_t i = 0; i < g.nodes.size(); ++i) {
@@ -167,12 +169,47 @@ std::optional<FreeSpaceRegion> TacsFreeSpace::emit(const TraversableMap& map,
   }
   accumulated_.clear();
   for (size_t i = 0; i < g.nodes.size(); ++i) {
-    if (in_room[i] || (labels.label[i] >= 0 && whole.count(labels.label[i]))) {
-      region.points.push_back(g.nodes[i].position);
-    }
+    if (labels.label[i] >= 0 && whole.count(labels.label[i])) in_room[i] = 1;
+  }
+  attachBorder(g, labels, &in_room);
+  for (size_t i = 0; i < g.nodes.size(); ++i) {
+    if (in_room[i]) region.points.push_back(g.nodes[i].position);
   }
   if (region.points.empty()) return std::nullopt;
   return region;
+}
+
+void TacsFreeSpace::attachBorder(const TravGraph& g, const Labels& labels,
+                                 std::vector<char>* in_room) const {
+  if (config_.border_distance <= 0.0) return;
+  // Traversable nodes too close to obstacles to be safe: breadth-first from the room's safe
+  // nodes over uncut edges, each reached node remembering the safe node it came from.
+  std::vector<std::vector<uint32_t>> adj(g.nodes.size());
+  for (size_t e = 0; e < g.edges.size(); ++e) {
+    const auto [a, b] = g.edges[e];
+    if (!labels.edge_open[e] || (labels.label[a] >= 0 && labels.label[b] >= 0)) continue;
+    adj[a].push_back(b);
+    adj[b].push_back(a);
+  }
+  std::vector<int> origin(g.nodes.size(), -1);
+  std::vector<uint32_t> queue;
+  for (uint32_t i = 0; i < g.nodes.size(); ++i) {
+    if ((*in_room)[i]) {
+      origin[i] = static_cast<int>(i);
+      queue.push_back(i);
+    }
+  }
+  for (size_t q = 0; q < queue.size(); ++q) {
+    const uint32_t i = queue[q];
+    for (uint32_t j : adj[i]) {
+      if (origin[j] >= 0 || labels.label[j] >= 0 || !g.nodes[j].traversable) continue;
+      const Eigen::Vector3d& o = g.nodes[origin[i]].position;
+      if ((g.nodes[j].position - o).head<2>().norm() > config_.border_distance) continue;
+      origin[j] = origin[i];
+      (*in_room)[j] = 1;
+      queue.push_back(j);
+    }
+  }
 }
 
 TacsFreeSpace::StepResult TacsFreeSpace::step(uint32_t keyframe_id,
