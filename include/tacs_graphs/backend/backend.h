@@ -5,9 +5,12 @@
 
 #include <map>
 #include <optional>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "tacs_graphs/backend/factor_graph.h"
+#include "tacs_graphs/rooms/room_map.h"
 #include "tacs_graphs/scene_graph/scene_graph.h"
 #include "tacs_graphs/walls/wall_map.h"
 
@@ -33,16 +36,30 @@ class Backend {
   void addLoopClosure(uint32_t from, uint32_t to, const Pose3& T_from_to,
                       const Matrix6d& information, double score);
 
+  /// Adds or updates a room from the room segmenter (RoomSegmenter::rooms()): one RoomPairFactor
+  /// per facing wall pair (two for a four-wall room, one for a corridor) and, for a corridor, a
+  /// CorridorAnchorFactor to the centre of its free space. Wall ids are landmark ids of
+  /// wallMap(); pairs on walls the graph does not hold are skipped. Returns false (and stores
+  /// nothing) when no pair is left. Free space and keyframes go into sceneGraph().
+  bool setRoom(const MappedRoom& room);
+  /// Wall-to-wall edge of room merging (paper eq. 4) between two wall landmarks; returns false
+  /// when a wall is unknown, both ids are the same or the edge exists already.
+  bool addWallToWall(uint32_t wall_a, uint32_t wall_b);
+
   /// Optimises when the schedule says so (every `optimize_every_keyframes` keyframes, and after a
   /// loop closure). Returns the report of the optimisation, if one ran.
   std::optional<OptimizationReport> optimizeIfDue();
   /// Optimises now, then folds duplicate walls.
   OptimizationReport optimize();
 
+  size_t roomCount() const { return rooms_.size(); }
+
   /// Optimised pose of a keyframe in the map frame.
   Pose3 keyframePose(uint32_t id) const { return graph_.keyframePose(id); }
   /// T_map_odom from the latest keyframe.
   Pose3 mapToOdom() const;
+  /// Keyframes, walls, rooms (optimised centres, free space, keyframes; keyframes get the
+  /// room_id of the room listing them) and loops.
   SceneGraph sceneGraph() const;
   const WallMap& wallMap() const { return wall_map_; }
   /// Total optimisation time so far (t_FGO) and the number of optimisations.
@@ -55,8 +72,13 @@ class Backend {
     Pose3 T_odom_base;
   };
 
+  void renameRoomWall(uint32_t removed, uint32_t kept);
+  void writeRooms(SceneGraph* graph) const;
+
   BackendConfig config_;
   FactorGraph graph_;
+  std::map<uint32_t, RoomNode> rooms_;
+  std::set<std::pair<uint32_t, uint32_t>> wall_to_wall_;  // edges added (smaller id first)
   WallMap wall_map_;
   std::map<uint32_t, KeyframeInfo> keyframes_;
   std::optional<uint32_t> last_keyframe_;

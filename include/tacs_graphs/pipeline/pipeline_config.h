@@ -10,6 +10,7 @@
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/frames.h"
 #include "tacs_graphs/odometry/lidar_odometry.h"
+#include "tacs_graphs/rooms/rooms_config.h"
 #include "tacs_graphs/traversability/traversability_config.h"
 #include "tacs_graphs/walls/walls_config.h"
 
@@ -22,6 +23,7 @@ struct PipelineConfig {
   BackendConfig backend;
   TraversabilityConfig traversability;
   MapExportConfig map_export;
+  RoomsConfig rooms;
 
   template <class V>
   void visit(V& v) {
@@ -31,6 +33,7 @@ struct PipelineConfig {
     v("backend", backend);
     v("traversability", traversability);
     v("map_export", map_export);
+    v("rooms", rooms);
   }
   void validate() const;
 };

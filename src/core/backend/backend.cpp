@@ -72,6 +72,7 @@ OptimizationReport Backend::optimize() {
   }
   for (const auto& [removed, kept] : wall_map_.mergeDuplicates()) {
     graph_.mergeWalls(kept, removed);
+    renameRoomWall(removed, kept);
   }
   return report;
 }
@@ -101,6 +102,7 @@ SceneGraph Backend::sceneGraph() const {
     g.walls[id] = w;
   }
   g.loops = loops_;
+  writeRooms(&g);
   return g;
 }
 

@@ -9,6 +9,7 @@ void PipelineConfig::validate() const {
   backend.validate();
   traversability.validate();
   map_export.validate();
+  rooms.validate();
 }
 
 LoadedPipelineConfig loadPipelineConfig(const std::string& yaml_path) {

@@ -1,0 +1,95 @@
+// The map of rooms and the room merging module (paper Sec. III-C).
+//
+// TACS merging (addObservation): a new observation is the same room as a mapped one when their
+// free spaces overlap (share of the smaller one's cells at `overlap_cell`) and their centres are
+// close along the axes orthogonal to the walls both define (d(x) = |x_k - x~_k| for two
+// y-direction corridors, both axes for two four-wall rooms). Rooms of perpendicular corridors
+// share no axis and never merge. The mapped room takes over the observation's free space and
+// keyframes, adopts a wall pair it lacked (a corridor re-detected as a four-wall room becomes a
+// room), and every wall of the observation that differs from the mapped room's wall of the same
+// category is returned as a wall-to-wall pair (eq. 4) for the backend.
+//
+// Baseline merging (addByCenterDistance, S-Graphs+): the nearest mapped room within a fixed 2D
+// centre distance, whatever the free space; the room's region becomes the latest cluster.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <unordered_set>
+#include <utility>
+#include <vector>
+
+#include "tacs_graphs/rooms/room_extraction.h"
+#include "tacs_graphs/rooms/rooms_config.h"
+
+namespace tacs {
+
+struct MappedRoom {
+  uint32_t id = 0;
+  /// Kind, walls, centre, free space (union of the merged observations) and keyframes.
+  RoomObservation room;
+  /// Observations merged into this room (1 for a room seen once).
+  uint32_t observations = 0;
+  /// Occupied cells of the free space at merging.overlap_cell (for the overlap test).
+  std::unordered_set<int64_t> cells;
+
+  /// The scene-graph node (free_space as map xy).
+  RoomNode toNode() const;
+};
+
+struct RoomAssociation {
+  uint32_t room_id = 0;
+  /// True when the observation started a new room; false when it was associated to (merged
+  /// into) an existing one, which is the re-detection that triggers loop closure (Sec. III-D).
+  bool created = true;
+  /// (wall of the mapped room, wall of the observation) of the same category that differ: the
+  /// wall-to-wall edges of eq. 4.
+  std::vector<std::pair<uint32_t, uint32_t>> wall_to_wall;
+};
+
+class RoomMap {
+ public:
+  /// Validates the config (throws ConfigError).
+  explicit RoomMap(const RoomMergingConfig& config = {});
+
+  /// TACS room merging; `landmarks` give the current wall planes for the merged room's centre.
+  RoomAssociation addObservation(const RoomObservation& observation,
+                                 const std::map<uint32_t, WallLandmark>& landmarks);
+
+  /// S-Graphs+ style association by 2D centre distance (the voxel baseline).
+  RoomAssociation addByCenterDistance(const RoomObservation& observation,
+                                      const std::map<uint32_t, WallLandmark>& landmarks,
+                                      double max_distance);
+
+  /// Follows the wall map: a room wall whose landmark disappeared (folded into another) takes
+  /// the landmark of the same facing whose plane passes within 0.3 m of the old wall's middle;
+  /// then every centre is recomputed from the current planes.
+  void refreshWalls(const std::map<uint32_t, WallLandmark>& landmarks);
+
+  const std::map<uint32_t, MappedRoom>& rooms() const { return rooms_; }
+  /// Centre distance between two rooms along the axes both define (the axes orthogonal to their
+  /// wall pairs); negative when they share no axis.
+  static double axisDistance(const RoomObservation& a, const RoomObservation& b);
+  void clear();
+
+ private:
+  struct WallMemo {
+    Eigen::Vector3d normal;
+    Eigen::Vector2d midpoint;
+  };
+  uint32_t create(const RoomObservation& observation);
+  RoomAssociation mergeOrCreate(MappedRoom* match, const RoomObservation& observation,
+                                bool union_free_space,
+                                const std::map<uint32_t, WallLandmark>& landmarks);
+  void mergeInto(MappedRoom* mapped, const RoomObservation& observation, bool union_free_space,
+                 const std::map<uint32_t, WallLandmark>& landmarks, RoomAssociation* out);
+  std::unordered_set<int64_t> cellsOf(const std::vector<Eigen::Vector3d>& pts) const;
+  void remember(const std::map<uint32_t, WallLandmark>& landmarks);
+
+  RoomMergingConfig config_;
+  std::map<uint32_t, MappedRoom> rooms_;
+  std::map<uint32_t, WallMemo> wall_memo_;  // last known plane of every wall a room uses
+  uint32_t next_id_ = 0;
+};
+
+}  // namespace tacs

@@ -1,0 +1,155 @@
+// Configuration of room segmentation (pipeline config section `rooms`, documented key by key in
+// config/default.yaml): the free-space segmentation (TACS, paper Sec. III-B-2, or the voxel
+// baseline in the style of S-Graphs+), the room extraction from walls (Sec. III-B-3) and the room
+// merging module (Sec. III-C).
+#pragma once
+
+#include <string>
+
+namespace tacs {
+
+/// Traversability-aware free-space segmentation (paper eq. 1-3).
+struct TacsFreeSpaceConfig {
+  /// Openings between two collinear wall landmarks of the same facing (a door, a gap in a half
+  /// wall) up to this width are doorways: safe-graph edges through them are cut, so rooms split
+  /// there even when the opening is wider than 2 * safe_clearance [m].
+  double max_doorway_width = 3.2;
+  /// Narrower openings are gaps in the observation of one wall, not doorways [m].
+  double min_doorway_width = 0.5;
+  /// Both wall pieces beside a doorway must be at least this long (pillars and cabinet faces
+  /// are not door jambs) [m].
+  double min_jamb_length = 1.0;
+  /// Walls beside a doorway: largest angle between their normals [deg] and largest distance
+  /// between their planes at the gap [m].
+  double jamb_max_angle_deg = 8.0;
+  double jamb_max_offset = 0.25;
+  /// A room observation is also emitted after this many keyframes in one region, so a robot that
+  /// stays in one room still reports it (the next observation is merged into it) [-].
+  int max_keyframes_per_observation = 60;
+  /// The robot is on the safe node nearest to it within this radius (xy) [m].
+  double robot_search_radius = 0.4;
+  /// T_inside of a keyframe is its room-graph component within this distance (xy) of the robot,
+  /// the reach of one keyframe's local traversable graph; 0 takes the whole component [m].
+  double local_radius = 10.0;
+  /// Traversable but unsafe nodes within this distance of a room's safe nodes join the room
+  /// (its free space then reaches the walls); 0 keeps the safe nodes only [m].
+  double border_distance = 0.6;
+
+  template <class V>
+  void visit(V& v) {
+    v("max_doorway_width", max_doorway_width);
+    v("min_doorway_width", min_doorway_width);
+    v("min_jamb_length", min_jamb_length);
+    v("jamb_max_angle_deg", jamb_max_angle_deg);
+    v("jamb_max_offset", jamb_max_offset);
+    v("max_keyframes_per_observation", max_keyframes_per_observation);
+    v("robot_search_radius", robot_search_radius);
+    v("local_radius", local_radius);
+    v("border_distance", border_distance);
+  }
+  void validate() const;
+};
+
+/// Voxel free-space baseline in the style of S-Graphs+ (reference/s_graphs.md, Sec. 2): an
+/// occupancy slice at robot height from the keyframe clouds, cells within `doorway_clearance` of
+/// an obstacle removed, connected components as room candidates.
+struct VoxelFreeSpaceConfig {
+  double resolution = 0.1;         // 2D cell of the occupancy slice [m]
+  double band_min = 0.3;           // slice band above the robot's floor, bottom [m]
+  double band_max = 1.8;           // slice band above the robot's floor, top [m]
+  double max_ray_length = 15.0;    // rays are integrated up to this range [m]
+  double downsample = 0.15;        // voxel size applied to keyframe clouds before ray casting [m]
+  int min_hits = 2;                // a cell with this many returns is occupied [-]
+  double doorway_clearance = 0.8;  // free cells this close to an obstacle are cut [m]
+  double min_cluster_area = 1.5;   // smaller clusters are dropped [m^2]
+  int update_every_keyframes = 4;  // clusters are recomputed every this many keyframes [-]
+  double merge_distance = 1.0;     // rooms closer than this (centre, 2D) are one room [m]
+
+  template <class V>
+  void visit(V& v) {
+    v("resolution", resolution);
+    v("band_min", band_min);
+    v("band_max", band_max);
+    v("max_ray_length", max_ray_length);
+    v("downsample", downsample);
+    v("min_hits", min_hits);
+    v("doorway_clearance", doorway_clearance);
+    v("min_cluster_area", min_cluster_area);
+    v("update_every_keyframes", update_every_keyframes);
+    v("merge_distance", merge_distance);
+  }
+  void validate() const;
+};
+
+/// Room extraction from a free-space region and the wall landmarks (paper Sec. III-B-3).
+struct RoomExtractionConfig {
+  /// Free-space points within this distance in front of a wall (and along its extent) are
+  /// adjacent to it [m].
+  double adjacency_distance = 1.5;
+  /// A wall bounds the region when its adjacent free-space points cover at least this length
+  /// along it (0.2 m bins), so a region touching a wall's end only is not bounded by it [m].
+  double min_adjacent_length = 1.0;
+  /// A face with free space right behind it along more than this share of its adjacent length
+  /// stands inside the region (furniture, a pillar), it does not bound it [-].
+  double max_behind_share = 0.5;
+  /// Walls are searched this far past their extent along the wall [m].
+  double extent_margin = 0.5;
+  /// Facing walls must be at least this far apart [m].
+  double min_width = 1.0;
+  /// Free-space regions with fewer points are not rooms [-].
+  int min_free_space_points = 30;
+  /// Share of the free-space points that must lie between a pair of facing walls [-].
+  double min_inside_share = 0.6;
+
+  template <class V>
+  void visit(V& v) {
+    v("adjacency_distance", adjacency_distance);
+    v("min_adjacent_length", min_adjacent_length);
+    v("max_behind_share", max_behind_share);
+    v("extent_margin", extent_margin);
+    v("min_width", min_width);
+    v("min_free_space_points", min_free_space_points);
+    v("min_inside_share", min_inside_share);
+  }
+  void validate() const;
+};
+
+/// Room merging (paper Sec. III-C).
+struct RoomMergingConfig {
+  /// Free-space cells used to measure the overlap of two rooms [m].
+  double overlap_cell = 0.4;
+  /// Two rooms overlap when this share of the smaller one's free-space cells is shared [-].
+  double min_overlap = 0.3;
+  /// Largest centre distance along the axes orthogonal to the rooms' walls [m] (d(x) of eq. 4).
+  double max_axis_distance = 1.0;
+
+  template <class V>
+  void visit(V& v) {
+    v("overlap_cell", overlap_cell);
+    v("min_overlap", min_overlap);
+    v("max_axis_distance", max_axis_distance);
+  }
+  void validate() const;
+};
+
+struct RoomsConfig {
+  /// "tacs" (traversable free space, the paper) or "voxel" (S-Graphs+ style baseline).
+  std::string method = "tacs";
+  TacsFreeSpaceConfig tacs;
+  VoxelFreeSpaceConfig voxel;
+  RoomExtractionConfig extraction;
+  RoomMergingConfig merging;
+
+  template <class V>
+  void visit(V& v) {
+    v("method", method);
+    v("tacs", tacs);
+    v("voxel", voxel);
+    v("extraction", extraction);
+    v("merging", merging);
+  }
+  /// Throws ConfigError naming the field ("rooms.<field>: ...").
+  void validate() const;
+};
+
+}  // namespace tacs

@@ -1,0 +1,196 @@
+#include "tacs_graphs/rooms/room_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace tacs {
+
+namespace {
+
+int64_t cellKey(const Eigen::Vector3d& p, double cell) {
+  const int64_t ix = static_cast<int64_t>(std::floor(p.x() / cell));
+  const int64_t iy = static_cast<int64_t>(std::floor(p.y() / cell));
+  return (ix << 32) ^ (iy & 0xffffffff);
+}
+
+// Appends the points of `add` not already present (at 5 cm) to `into`.
+void unionPoints(std::vector<Eigen::Vector3d>* into, const std::vector<Eigen::Vector3d>& add) {
+  constexpr double kDedupCell = 0.05;
+  std::unordered_set<int64_t> seen;
+  seen.reserve(into->size() + add.size());
+  for (const auto& p : *into) seen.insert(cellKey(p, kDedupCell));
+  for (const auto& p : add) {
+    if (seen.insert(cellKey(p, kDedupCell)).second) into->push_back(p);
+  }
+}
+
+void unionIds(std::vector<uint32_t>* into, const std::vector<uint32_t>& add) {
+  into->insert(into->end(), add.begin(), add.end());
+  std::sort(into->begin(), into->end());
+  into->erase(std::unique(into->begin(), into->end()), into->end());
+}
+
+}  // namespace
+
+RoomNode MappedRoom::toNode() const {
+  RoomNode n;
+  n.id = id;
+  n.kind = room.kind;
+  n.center = room.center;
+  n.wall_ids = room.wallIds();
+  n.free_space.reserve(room.free_space.size());
+  for (const auto& p : room.free_space) n.free_space.push_back(p.head<2>());
+  n.keyframe_ids = room.keyframe_ids;
+  return n;
+}
+
+RoomMap::RoomMap(const RoomMergingConfig& config) : config_(config) { config_.validate(); }
+
+void RoomMap::clear() {
+  rooms_.clear();
+  wall_memo_.clear();
+  next_id_ = 0;
+}
+
+std::unordered_set<int64_t> RoomMap::cellsOf(const std::vector<Eigen::Vector3d>& pts) const {
+  std::unordered_set<int64_t> cells;
+  cells.reserve(pts.size());
+  for (const auto& p : pts) cells.insert(cellKey(p, config_.overlap_cell));
+  return cells;
+}
+
+double RoomMap::axisDistance(const RoomObservation& a, const RoomObservation& b) {
+  // Measured in the axes of `a` (the mapped room); b's axes agree up to the axes estimate noise.
+  const Eigen::Vector2d delta = (a.center - b.center).head<2>();
+  double dist = -1.0;
+  if (a.hasXPair() && b.hasXPair()) dist = std::max(dist, std::abs(delta.dot(a.xAxis())));
+  if (a.hasYPair() && b.hasYPair()) dist = std::max(dist, std::abs(delta.dot(a.yAxis())));
+  return dist;
+}
+
+uint32_t RoomMap::create(const RoomObservation& observation) {
+  MappedRoom& m = rooms_[next_id_];
+  m.id = next_id_;
+  m.room = observation;
+  m.observations = 1;
+  m.cells = cellsOf(observation.free_space);
+  return next_id_++;
+}
+
+void RoomMap::mergeInto(MappedRoom* m, const RoomObservation& o, bool union_free_space,
+                        const std::map<uint32_t, WallLandmark>& landmarks, RoomAssociation* out) {
+  out->room_id = m->id;
+  out->created = false;
+  // Walls: adopt a facing pair the mapped room lacks; tie differing walls (eq. 4).
+  for (int pair = 0; pair < 2; ++pair) {
+    const int lo = 2 * pair, hi = 2 * pair + 1;
+    const bool mapped_has = m->room.walls[lo] >= 0 && m->room.walls[hi] >= 0;
+    const bool obs_has = o.walls[lo] >= 0 && o.walls[hi] >= 0;
+    if (!obs_has) continue;
+    if (!mapped_has) {
+      m->room.walls[lo] = o.walls[lo];
+      m->room.walls[hi] = o.walls[hi];
+      continue;
+    }
+    for (int c : {lo, hi}) {
+      if (m->room.walls[c] != o.walls[c]) {
+        out->wall_to_wall.emplace_back(static_cast<uint32_t>(m->room.walls[c]),
+                                       static_cast<uint32_t>(o.walls[c]));
+      }
+    }
+  }
+  m->room.kind = m->room.hasXPair() && m->room.hasYPair() ? RoomKind::kRoom : RoomKind::kCorridor;
+  if (union_free_space) {
+    unionPoints(&m->room.free_space, o.free_space);
+    for (int64_t c : cellsOf(o.free_space)) m->cells.insert(c);
+  } else {
+    m->room.free_space = o.free_space;
+    m->cells = cellsOf(o.free_space);
+  }
+  unionIds(&m->room.keyframe_ids, o.keyframe_ids);
+  ++m->observations;
+  recomputeRoomCenter(landmarks, &m->room);
+}
+
+RoomAssociation RoomMap::mergeOrCreate(MappedRoom* match, const RoomObservation& observation,
+                                       bool union_free_space,
+                                       const std::map<uint32_t, WallLandmark>& landmarks) {
+  RoomAssociation out;
+  if (match) {
+    mergeInto(match, observation, union_free_space, landmarks, &out);
+  } else {
+    out.room_id = create(observation);
+  }
+  return out;
+}
+
+RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
+                                        const std::map<uint32_t, WallLandmark>& landmarks) {
+  remember(landmarks);
+  const auto obs_cells = cellsOf(observation.free_space);
+  MappedRoom* best = nullptr;
+  double best_overlap = 0.0;
+  for (auto& [id, m] : rooms_) {
+    const double axis = axisDistance(m.room, observation);
+    if (axis < 0.0 || axis > config_.max_axis_distance) continue;
+    const auto& small = obs_cells.size() < m.cells.size() ? obs_cells : m.cells;
+    const auto& large = obs_cells.size() < m.cells.size() ? m.cells : obs_cells;
+    if (small.empty()) continue;
+    size_t shared = 0;
+    for (int64_t c : small) shared += large.count(c);
+    const double overlap = static_cast<double>(shared) / small.size();
+    if (overlap >= config_.min_overlap && overlap > best_overlap) {
+      best_overlap = overlap;
+      best = &m;
+    }
+  }
+  return mergeOrCreate(best, observation, /*union_free_space=*/true, landmarks);
+}
+
+RoomAssociation RoomMap::addByCenterDistance(const RoomObservation& observation,
+                                             const std::map<uint32_t, WallLandmark>& landmarks,
+                                             double max_distance) {
+  remember(landmarks);
+  MappedRoom* best = nullptr;
+  double best_dist = max_distance;
+  for (auto& [id, m] : rooms_) {
+    const double dist = (m.room.center - observation.center).head<2>().norm();
+    if (dist <= best_dist) {
+      best_dist = dist;
+      best = &m;
+    }
+  }
+  return mergeOrCreate(best, observation, /*union_free_space=*/false, landmarks);
+}
+
+void RoomMap::remember(const std::map<uint32_t, WallLandmark>& landmarks) {
+  for (const auto& [id, w] : landmarks) wall_memo_[id] = {w.normal, w.midpoint()};
+}
+
+void RoomMap::refreshWalls(const std::map<uint32_t, WallLandmark>& landmarks) {
+  constexpr double kMaxOffset = 0.3;      // plane distance at the old wall's middle [m]
+  constexpr double kMinNormalDot = 0.94;  // about 20 deg
+  for (auto& [rid, m] : rooms_) {
+    for (int& w : m.room.walls) {
+      if (w < 0 || landmarks.count(static_cast<uint32_t>(w))) continue;
+      const auto memo = wall_memo_.find(static_cast<uint32_t>(w));
+      if (memo == wall_memo_.end()) continue;
+      int replacement = -1;
+      double best = kMaxOffset;
+      for (const auto& [id, lm] : landmarks) {
+        if (lm.normal.dot(memo->second.normal) < kMinNormalDot) continue;
+        const double off = std::abs(lm.normal.head<2>().dot(memo->second.midpoint) + lm.d);
+        if (off <= best) {
+          best = off;
+          replacement = static_cast<int>(id);
+        }
+      }
+      if (replacement >= 0) w = replacement;
+    }
+    recomputeRoomCenter(landmarks, &m.room);
+  }
+  remember(landmarks);
+}
+
+}  // namespace tacs

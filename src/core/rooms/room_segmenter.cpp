@@ -1,0 +1,112 @@
+#include "tacs_graphs/rooms/room_segmenter.h"
+
+#include <utility>
+
+#include "tacs_graphs/common/timing.h"
+
+namespace tacs {
+
+namespace {
+
+const RoomsConfig& validated(const RoomsConfig& config) {
+  config.validate();
+  return config;
+}
+
+}  // namespace
+
+RoomSegmenter::RoomSegmenter(const RoomsConfig& config, const DominantAxesConfig& axes,
+                             const Pose3& T_base_sensor)
+    : config_(validated(config)),
+      axes_config_(axes),
+      T_base_sensor_(T_base_sensor),
+      tacs_(config.tacs),
+      voxel_(config.voxel),
+      room_map_(config.merging) {
+  axes_config_.validate();
+}
+
+void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
+                              std::vector<uint32_t> keyframe_ids, const WallMap& walls,
+                              const DominantAxes& axes, RoomSegmentationResult* result) {
+  if (!axes.valid) {
+    result->rejected.push_back("building axes unknown (too few walls)");
+    return;
+  }
+  RoomExtractionResult extracted = extractRoom(points, walls.landmarks(), axes, config_.extraction);
+  if (!extracted.found) {
+    result->rejected.push_back(extracted.reason);
+    return;
+  }
+  extracted.room.keyframe_ids = std::move(keyframe_ids);
+  const RoomAssociation a = config_.method == "voxel"
+                                ? room_map_.addByCenterDistance(extracted.room, walls.landmarks(),
+                                                                config_.voxel.merge_distance)
+                                : room_map_.addObservation(extracted.room, walls.landmarks());
+  result->observations.push_back(std::move(extracted.room));
+  result->associations.push_back(a);
+}
+
+void RoomSegmenter::clusterVoxels(const WallMap& walls, const DominantAxes& axes,
+                                  RoomSegmentationResult* result) {
+  keyframes_since_clustering_ = 0;
+  for (auto& cluster : voxel_.clusters()) {
+    addRegion(std::move(cluster.points), std::move(cluster.keyframe_ids), walls, axes, result);
+  }
+}
+
+RoomSegmentationResult RoomSegmenter::processKeyframe(uint32_t keyframe_id, const Pose3& T_map_base,
+                                                      const TraversableMap& map,
+                                                      const WallMap& walls,
+                                                      const PointCloud* cloud_in_base) {
+  Stopwatch watch;
+  RoomSegmentationResult result;
+  room_map_.refreshWalls(walls.landmarks());
+  const DominantAxes axes = estimateDominantAxes(walls, axes_config_);
+  if (config_.method == "voxel") {
+    if (!cloud_in_base) {
+      result.rejected.push_back("voxel method: no keyframe cloud given");
+    } else {
+      voxel_.integrate(keyframe_id, *cloud_in_base, T_map_base, T_base_sensor_.translation());
+      if (++keyframes_since_clustering_ >= config_.voxel.update_every_keyframes) {
+        clusterVoxels(walls, axes, &result);
+      }
+    }
+  } else {
+    TacsFreeSpace::StepResult step =
+        tacs_.step(keyframe_id, T_map_base.translation(), map, walls.landmarks());
+    result.robot_inside = step.inside;
+    result.doorways = step.doorways;
+    for (auto& region : step.finished) {
+      addRegion(std::move(region.points), std::move(region.keyframe_ids), walls, axes, &result);
+    }
+  }
+  result.time_ms = watch.elapsedMs();
+  return result;
+}
+
+RoomSegmentationResult RoomSegmenter::finish(const TraversableMap& map, const WallMap& walls) {
+  Stopwatch watch;
+  RoomSegmentationResult result;
+  room_map_.refreshWalls(walls.landmarks());
+  const DominantAxes axes = estimateDominantAxes(walls, axes_config_);
+  if (config_.method == "voxel") {
+    clusterVoxels(walls, axes, &result);
+  } else if (auto region = tacs_.flush(map, walls.landmarks())) {
+    addRegion(std::move(region->points), std::move(region->keyframe_ids), walls, axes, &result);
+  }
+  result.time_ms = watch.elapsedMs();
+  return result;
+}
+
+void RoomSegmenter::writeTo(SceneGraph* graph) const {
+  for (const auto& [id, room] : rooms()) {
+    graph->rooms[id] = room.toNode();
+    for (uint32_t kf : room.room.keyframe_ids) {
+      auto it = graph->keyframes.find(kf);
+      if (it != graph->keyframes.end()) it->second.room_id = static_cast<int>(id);
+    }
+  }
+}
+
+}  // namespace tacs

@@ -1,0 +1,110 @@
+// Room merging (paper Sec. III-C): overlap of free space plus centre distance along the axes
+// orthogonal to the walls; wall-to-wall pairs (eq. 4); the S-Graphs+ centre-distance baseline.
+#include <gtest/gtest.h>
+
+#include "tacs_graphs/rooms/room_map.h"
+
+namespace tacs {
+namespace {
+
+// A y-direction corridor (walls facing +-x: x+ id xp, x- id xm) over [x0,x1] x [y0,y1].
+RoomObservation yCorridor(double x0, double x1, double y0, double y1, int xp, int xm) {
+  RoomObservation o;
+  o.kind = RoomKind::kCorridor;
+  o.walls = {xp, xm, -1, -1};
+  for (double x = x0; x <= x1; x += 0.2) {
+    for (double y = y0; y <= y1; y += 0.2) o.free_space.emplace_back(x, y, 0.0);
+  }
+  o.center = Eigen::Vector3d(0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.0);
+  return o;
+}
+
+RoomObservation xCorridor(double x0, double x1, double y0, double y1, int yp, int ym) {
+  RoomObservation o = yCorridor(x0, x1, y0, y1, -1, -1);
+  o.walls = {-1, -1, yp, ym};
+  return o;
+}
+
+const std::map<uint32_t, WallLandmark> kNoWalls;
+
+TEST(RoomsMerging, OverlappingCorridorCloseAcrossIsMergedWithWallPairs) {
+  RoomMap map;
+  const auto first = map.addObservation(yCorridor(0, 2, 0, 10, 1, 2), kNoWalls);
+  EXPECT_TRUE(first.created);
+  // Seen again further along, 0.3 m off across, with a new landmark for the x- wall.
+  RoomObservation again = yCorridor(0.3, 2.3, 6, 16, 1, 7);
+  again.keyframe_ids = {40, 41};
+  const auto second = map.addObservation(again, kNoWalls);
+  EXPECT_FALSE(second.created);
+  EXPECT_EQ(second.room_id, first.room_id);
+  ASSERT_EQ(second.wall_to_wall.size(), 1u);
+  EXPECT_EQ(second.wall_to_wall[0], std::make_pair(2u, 7u));
+  ASSERT_EQ(map.rooms().size(), 1u);
+  const MappedRoom& r = map.rooms().at(first.room_id);
+  EXPECT_EQ(r.observations, 2u);
+  EXPECT_EQ(r.room.keyframe_ids, (std::vector<uint32_t>{40, 41}));
+  // The free space is the union: it now reaches y = 16.
+  double max_y = 0;
+  for (const auto& p : r.room.free_space) max_y = std::max(max_y, p.y());
+  EXPECT_NEAR(max_y, 16.0, 0.2);
+}
+
+TEST(RoomsMerging, FarAcrossOrDisjointOrPerpendicularStaysApart) {
+  RoomMap map;
+  map.addObservation(yCorridor(0, 2, 0, 10, 1, 2), kNoWalls);
+  // Overlapping but 1.5 m apart across the corridor.
+  EXPECT_TRUE(map.addObservation(yCorridor(1.5, 3.5, 0, 10, 3, 4), kNoWalls).created);
+  // Same axis, no shared free space.
+  EXPECT_TRUE(map.addObservation(yCorridor(0, 2, 20, 30, 1, 2), kNoWalls).created);
+  // A perpendicular corridor crossing at a junction: no common axis.
+  EXPECT_TRUE(map.addObservation(xCorridor(-5, 7, 4, 6, 5, 6), kNoWalls).created);
+  EXPECT_EQ(map.rooms().size(), 4u);
+}
+
+TEST(RoomsMerging, CorridorReDetectedAsRoomBecomesARoom) {
+  RoomMap map;
+  const auto first = map.addObservation(yCorridor(0, 4, 0, 4, 1, 2), kNoWalls);
+  RoomObservation room = yCorridor(0, 4, 0, 4, 1, 2);
+  room.kind = RoomKind::kRoom;
+  room.walls = {1, 2, 3, 4};
+  const auto second = map.addObservation(room, kNoWalls);
+  EXPECT_FALSE(second.created);
+  EXPECT_TRUE(second.wall_to_wall.empty());
+  const MappedRoom& r = map.rooms().at(first.room_id);
+  EXPECT_EQ(r.room.kind, RoomKind::kRoom);
+  EXPECT_EQ(r.room.walls, (std::array<int, 4>{1, 2, 3, 4}));
+}
+
+TEST(RoomsMerging, BaselineAssociatesByCentreDistanceOnly) {
+  RoomMap map;
+  map.addByCenterDistance(yCorridor(0, 2, 0, 10, 1, 2), kNoWalls, 1.0);
+  // No shared free space but centres 0.8 m apart: one room for the baseline...
+  const auto near = map.addByCenterDistance(yCorridor(0.8, 2.8, 0, 10, 1, 2), kNoWalls, 1.0);
+  EXPECT_FALSE(near.created);
+  // ...while 1.2 m is a new room even over the same free space.
+  EXPECT_TRUE(map.addByCenterDistance(yCorridor(0, 2, 1.2, 11.2, 1, 2), kNoWalls, 1.0).created);
+  EXPECT_EQ(map.rooms().size(), 2u);
+}
+
+TEST(RoomsMerging, FollowsWallsFoldedIntoOthers) {
+  RoomMap map;
+  std::map<uint32_t, WallLandmark> walls;
+  WallLandmark w;
+  w.id = 9;
+  w.normal = Eigen::Vector3d(-1, 0, 0);
+  w.d = 2.0;  // x = 2, facing -x
+  w.endpoints[0] = {2, 10};
+  w.endpoints[1] = {2, 0};
+  walls[9] = w;
+  const auto a = map.addObservation(yCorridor(0, 2, 0, 10, -1, 9), walls);
+  // Landmark 9 folded into 12 (same plane, 5 cm off).
+  walls.erase(9);
+  w.id = 12;
+  w.d = 2.05;
+  walls[12] = w;
+  map.refreshWalls(walls);
+  EXPECT_EQ(map.rooms().at(a.room_id).room.walls[1], 12);
+}
+
+}  // namespace
+}  // namespace tacs
