@@ -8,6 +8,7 @@
 #include "tacs_graphs/backend/factor_graph.h"
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/frames.h"
+#include "tacs_graphs/loop_closure/loop_closure_config.h"
 #include "tacs_graphs/odometry/lidar_odometry.h"
 #include "tacs_graphs/traversability/traversability_config.h"
 #include "tacs_graphs/walls/walls_config.h"
@@ -20,6 +21,7 @@ struct PipelineConfig {
   WallsConfig walls;
   BackendConfig backend;
   TraversabilityConfig traversability;
+  LoopClosureConfig loop_closure;
 
   template <class V>
   void visit(V& v) {
@@ -28,6 +30,7 @@ struct PipelineConfig {
     v("walls", walls);
     v("backend", backend);
     v("traversability", traversability);
+    v("loop_closure", loop_closure);
   }
   void validate() const;
 };

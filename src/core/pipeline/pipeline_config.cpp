@@ -8,6 +8,7 @@ void PipelineConfig::validate() const {
   walls.validate();
   backend.validate();
   traversability.validate();
+  loop_closure.validate();
 }
 
 LoadedPipelineConfig loadPipelineConfig(const std::string& yaml_path) {
