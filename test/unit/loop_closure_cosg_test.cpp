@@ -73,21 +73,32 @@ TEST(LoopClosureCosg, ClosesARevisitWithTheCorrectRelativePose) {
 
 TEST(LoopClosureCosg, LargeInitialErrorClosesThroughTheFinePathOnly) {
   const test::BoxRoom room;
-  // 1 m and 10 deg off: the narrow gate of the coarse path settles on a wrong pose.
-  const Pose3 error = poseFromXyzRpy(0.8, -0.6, 0.0, 0.0, 0.0, 10.0 * M_PI / 180.0);
-  LoopClosureConfig coarse_only;
-  coarse_only.cosg.max_fine_candidates = 0;
-  LoopDetector coarse_detector(coarse_only);
-  const Revisit coarse = revisit(&coarse_detector, room, error);
-  EXPECT_TRUE(coarse.detection.loops.empty());
-  EXPECT_FALSE(coarse.detection.registered.empty());
+  // 1 m and 10 deg off: the narrow gate of the coarse path settles on a wrong pose for every
+  // candidate (their scores stay between S_fine and S_coarse), the fine path recovers it.
+  for (const Pose3& error : {poseFromXyzRpy(0.707, 0.707, 0.0, 0.0, 0.0, 10.0 * M_PI / 180.0),
+                             poseFromXyzRpy(-0.707, -0.707, 0.0, 0.0, 0.0, -10.0 * M_PI / 180.0)}) {
+    SCOPED_TRACE(error.translation().transpose());
+    LoopClosureConfig coarse_only;
+    coarse_only.cosg.max_fine_candidates = 0;
+    LoopDetector coarse_detector(coarse_only);
+    const Revisit coarse = revisit(&coarse_detector, room, error);
+    EXPECT_TRUE(coarse.detection.loops.empty());
+    ASSERT_EQ(coarse.detection.coarse_scores.size(), 5u);
+    for (double score : coarse.detection.coarse_scores) {
+      EXPECT_LT(score, coarse_only.cosg.s_coarse);
+      EXPECT_GE(score, coarse_only.cosg.s_fine);
+    }
 
-  LoopDetector detector{LoopClosureConfig()};
-  const Revisit r = revisit(&detector, room, error);
-  ASSERT_EQ(r.detection.loops.size(), 1u);
-  EXPECT_EQ(r.detection.loops.front().path, LoopPath::kFine);
-  expectCorrect(r.detection.loops.front(), r.truth_query);
-  EXPECT_EQ(detector.stats().fine_loops, 1);
+    LoopDetector detector{LoopClosureConfig()};
+    const Revisit r = revisit(&detector, room, error);
+    ASSERT_EQ(r.detection.loops.size(), 1u);
+    EXPECT_EQ(r.detection.loops.front().path, LoopPath::kFine);
+    EXPECT_GE(r.detection.loops.front().score, detector.config().cosg.s_coarse);
+    expectCorrect(r.detection.loops.front(), r.truth_query);
+    EXPECT_EQ(detector.stats().fine_loops, 1);
+    // 5 coarse registrations, then 3 weak matches refined in 3 stages each.
+    EXPECT_EQ(r.detection.registrations, 5 + 3 * 3);
+  }
 }
 
 TEST(LoopClosureCosg, AWrongRoomGivesNoLoop) {

@@ -39,10 +39,10 @@ struct LoopRegistrationConfig {
 struct CosgLoopConfig {
   double d_loop_m = 5.0;            // [m] d_th^loop: candidates this close to the query (estimates)
   double partition_length_m = 8.0;  // [m] L_part along the room's long axis
-  int max_candidates_per_partition = 6;  // nearest candidates registered per searched partition
-  int min_id_separation = 20;            // [keyframes] younger candidates are the same visit
-  double min_time_separation_s = 20.0;   // [s] ... and so are candidates this recent
-  double coarse_correspondence_m = 0.5;  // [m] GICP pair gating of the coarse (direct) path
+  int max_candidates_per_partition = 6;   // nearest candidates registered per searched partition
+  int min_id_separation = 20;             // [keyframes] younger candidates are the same visit
+  double min_time_separation_s = 20.0;    // [s] ... and so are candidates this recent
+  double coarse_correspondence_m = 0.25;  // [m] GICP pair gating of the coarse (direct) path
   // [m] GICP pair gating per stage of the fine path, wide to narrow: a wide gate pulls a pose
   // that is off by up to ~1 m and ~10 deg into the basin of the narrow one.
   std::vector<double> fine_correspondence_schedule_m = {2.5, 1.2, 0.5};

@@ -217,6 +217,7 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
       const Pose3 guess = keyframes_.at(id).T_map_base.inverse() * query.T_map_base;
       coarse[s].push_back(registerPair(id, query_id, guess, cc.coarse_correspondence_m));
       det.registered.push_back(id);
+      det.coarse_scores.push_back(coarse[s].back().score);
       ++det.registrations;
     }
   }
