@@ -9,6 +9,7 @@
 #include "tacs_graphs/backend/map_export.h"
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/frames.h"
+#include "tacs_graphs/loop_closure/loop_closure_config.h"
 #include "tacs_graphs/odometry/lidar_odometry.h"
 #include "tacs_graphs/rooms/rooms_config.h"
 #include "tacs_graphs/traversability/traversability_config.h"
@@ -24,6 +25,7 @@ struct PipelineConfig {
   TraversabilityConfig traversability;
   MapExportConfig map_export;
   RoomsConfig rooms;
+  LoopClosureConfig loop_closure;
 
   template <class V>
   void visit(V& v) {
@@ -34,6 +36,7 @@ struct PipelineConfig {
     v("traversability", traversability);
     v("map_export", map_export);
     v("rooms", rooms);
+    v("loop_closure", loop_closure);
   }
   void validate() const;
 };

@@ -10,6 +10,7 @@ void PipelineConfig::validate() const {
   traversability.validate();
   map_export.validate();
   rooms.validate();
+  loop_closure.validate();
 }
 
 LoadedPipelineConfig loadPipelineConfig(const std::string& yaml_path) {

@@ -1,0 +1,104 @@
+// Section `loop_closure` of the pipeline configuration: room-triggered CoSG-LCD (paper Sec. III-D)
+// and the distance-threshold baseline in the style of hdl_graph_slam / S-Graphs+ (Sec. IV-A).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace tacs {
+
+/// Keyframe preparation and the GICP settings shared by both detectors.
+struct LoopRegistrationConfig {
+  double keyframe_voxel_m = 0.0;  // [m] extra voxel downsampling of keyframe clouds; 0 keeps them
+  int k_neighbors = 10;           // points per GICP covariance
+  int max_iterations = 30;        // GICP iterations per registration stage
+  int num_threads = 2;            // OpenMP threads of GICP; 0 = OpenMP default
+  // Match score (CoSG-LCD's S): share of the query's wall-like points that land on a surface of
+  // the candidate. Horizontal surfaces (floor, ceiling) are left out because they agree under any
+  // planar shift or yaw, so they would inflate the score of a wrong alignment.
+  double score_search_radius_m = 0.5;    // [m] nearest candidate point searched this far
+  double score_plane_distance_m = 0.08;  // [m] ... and the point must lie this close to its plane
+  double score_max_normal_z = 0.5;       // |normal z| above this: horizontal, not scored [-]
+  double information_scale = 1.0;        // scales the GICP Hessian given as loop information [-]
+
+  template <class V>
+  void visit(V& v) {
+    v("keyframe_voxel_m", keyframe_voxel_m);
+    v("k_neighbors", k_neighbors);
+    v("max_iterations", max_iterations);
+    v("num_threads", num_threads);
+    v("score_search_radius_m", score_search_radius_m);
+    v("score_plane_distance_m", score_plane_distance_m);
+    v("score_max_normal_z", score_max_normal_z);
+    v("information_scale", information_scale);
+  }
+  void validate() const;
+};
+
+/// CoSG-LCD (paper Sec. III-D, Fig. 5): candidates from the re-detected room only.
+struct CosgLoopConfig {
+  double d_loop_m = 5.0;            // [m] d_th^loop: candidates this close to the query (estimates)
+  double partition_length_m = 8.0;  // [m] L_part along the room's long axis
+  int max_candidates_per_partition = 6;   // nearest candidates registered per searched partition
+  int min_id_separation = 20;             // [keyframes] younger candidates are the same visit
+  double min_time_separation_s = 20.0;    // [s] ... and so are candidates this recent
+  double coarse_correspondence_m = 0.25;  // [m] GICP pair gating of the coarse (direct) path
+  // [m] GICP pair gating per stage of the fine path, wide to narrow: a wide gate pulls a pose
+  // that is off by up to ~1 m and ~10 deg into the basin of the narrow one.
+  std::vector<double> fine_correspondence_schedule_m = {2.5, 1.2, 0.5};
+  double s_coarse = 0.7;        // S_coarse: a registration with this score is a loop [-]
+  double s_fine = 0.3;          // S_fine: weaker matches with at least this score are refined [-]
+  int max_fine_candidates = 3;  // best weak matches refined coarse-to-fine per detection
+
+  template <class V>
+  void visit(V& v) {
+    v("d_loop_m", d_loop_m);
+    v("partition_length_m", partition_length_m);
+    v("max_candidates_per_partition", max_candidates_per_partition);
+    v("min_id_separation", min_id_separation);
+    v("min_time_separation_s", min_time_separation_s);
+    v("coarse_correspondence_m", coarse_correspondence_m);
+    v("fine_correspondence_schedule_m", fine_correspondence_schedule_m);
+    v("s_coarse", s_coarse);
+    v("s_fine", s_fine);
+    v("max_fine_candidates", max_fine_candidates);
+  }
+  void validate() const;
+};
+
+/// Distance-threshold baseline (hdl_graph_slam style), run on every keyframe.
+struct DistanceLoopConfig {
+  double distance_threshold_m = 3.0;  // [m] candidates this close in xy (estimates)
+  double accum_distance_m = 8.0;      // [m] ... and at least this far back along the path
+  double min_edge_interval_m = 5.0;   // [m] travel since the last accepted loop before the next
+  double max_correspondence_m = 2.5;  // [m] GICP pair gating
+  double fitness_threshold = 0.5;     // [m^2] accept the best candidate below this mean sq. error
+
+  template <class V>
+  void visit(V& v) {
+    v("distance_threshold_m", distance_threshold_m);
+    v("accum_distance_m", accum_distance_m);
+    v("min_edge_interval_m", min_edge_interval_m);
+    v("max_correspondence_m", max_correspondence_m);
+    v("fitness_threshold", fitness_threshold);
+  }
+  void validate() const;
+};
+
+struct LoopClosureConfig {
+  std::string method = "cosg";  // cosg (room-triggered) | distance (every keyframe)
+  LoopRegistrationConfig registration;
+  CosgLoopConfig cosg;
+  DistanceLoopConfig distance;
+
+  template <class V>
+  void visit(V& v) {
+    v("method", method);
+    v("registration", registration);
+    v("cosg", cosg);
+    v("distance", distance);
+  }
+  void validate() const;
+};
+
+}  // namespace tacs

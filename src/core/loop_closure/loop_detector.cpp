@@ -1,0 +1,268 @@
+#include "tacs_graphs/loop_closure/loop_detector.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <set>
+
+#include "tacs_graphs/common/timing.h"
+#include "tacs_graphs/loop_closure/room_partitions.h"
+#include "tacs_graphs/odometry/preprocess.h"
+
+namespace tacs {
+
+namespace {
+
+// GicpCloud covariances are plane-regularised, C = I - (1 - kFlat) n n^T with kFlat = 1e-3
+// (gicp.h), so the normal needs no eigen decomposition: n n^T = (I - C) / (1 - kFlat). A point
+// with too few neighbours has C = I (trace 3) and no normal.
+constexpr double kFlat = 1e-3;
+bool hasNormal(const Eigen::Matrix3d& C) { return C.trace() < 2.5; }
+double squaredNormalZ(const Eigen::Matrix3d& C) { return (1.0 - C(2, 2)) / (1.0 - kFlat); }
+double squaredPlaneDistance(const Eigen::Matrix3d& C, const Eigen::Vector3d& r) {
+  return std::max(0.0, (r.squaredNorm() - r.dot(C * r)) / (1.0 - kFlat));
+}
+
+// Fewer wall-like points than this cannot tell a right alignment from a wrong one.
+constexpr size_t kMinScoredPoints = 30;
+
+}  // namespace
+
+const char* loopPathName(LoopPath path) {
+  switch (path) {
+    case LoopPath::kCoarse:
+      return "coarse";
+    case LoopPath::kFine:
+      return "fine";
+    case LoopPath::kDistance:
+      return "distance";
+  }
+  return "?";
+}
+
+LoopDetector::LoopDetector(const LoopClosureConfig& config) : config_(config) {
+  config_.validate();
+}
+
+void LoopDetector::addKeyframe(uint32_t id, double stamp, const Pose3& T_map_base,
+                               const PointCloud& cloud) {
+  const LoopRegistrationConfig& rc = config_.registration;
+  Keyframe kf;
+  kf.stamp = stamp;
+  kf.T_map_base = T_map_base;
+  if (any_added_ && keyframes_.count(last_added_)) {
+    const Keyframe& prev = keyframes_.at(last_added_);
+    kf.accum_distance =
+        prev.accum_distance + (T_map_base.translation() - prev.T_map_base.translation()).norm();
+  }
+  kf.cloud = rc.keyframe_voxel_m > 0.0
+                 ? GicpCloud::build(voxelDownsample(cloud, rc.keyframe_voxel_m), rc.k_neighbors,
+                                    rc.num_threads)
+                 : GicpCloud::build(cloud, rc.k_neighbors, rc.num_threads);
+  const double max_nz_sq = rc.score_max_normal_z * rc.score_max_normal_z;
+  const auto& covs = kf.cloud->covariances();
+  for (size_t i = 0; i < covs.size(); ++i) {
+    if (hasNormal(covs[i]) && squaredNormalZ(covs[i]) <= max_nz_sq) {
+      kf.scored_points.push_back(static_cast<uint32_t>(i));
+    }
+  }
+  keyframes_[id] = std::move(kf);
+  last_added_ = id;
+  any_added_ = true;
+}
+
+void LoopDetector::updatePoses(const std::map<uint32_t, Pose3>& T_map_base) {
+  for (const auto& [id, pose] : T_map_base) {
+    auto it = keyframes_.find(id);
+    if (it != keyframes_.end()) it->second.T_map_base = pose;
+  }
+}
+
+double LoopDetector::accumulatedDistance(uint32_t id) const {
+  auto it = keyframes_.find(id);
+  return it == keyframes_.end() ? 0.0 : it->second.accum_distance;
+}
+
+double LoopDetector::matchScore(uint32_t candidate_id, uint32_t query_id,
+                                const Pose3& T_candidate_query) const {
+  const Keyframe& cand = keyframes_.at(candidate_id);
+  const Keyframe& query = keyframes_.at(query_id);
+  if (query.scored_points.size() < kMinScoredPoints || cand.cloud->empty()) return 0.0;
+  const LoopRegistrationConfig& rc = config_.registration;
+  const double search_sq = rc.score_search_radius_m * rc.score_search_radius_m;
+  const double plane_sq = rc.score_plane_distance_m * rc.score_plane_distance_m;
+  const auto& q_points = query.cloud->points();
+  const auto& c_points = cand.cloud->points();
+  const auto& c_covs = cand.cloud->covariances();
+  size_t matched = 0;
+  for (uint32_t i : query.scored_points) {
+    const Eigen::Vector3d p = T_candidate_query * q_points[i];
+    double dist_sq = 0.0;
+    const int64_t j = cand.cloud->nearest(p, search_sq, &dist_sq);
+    if (j < 0) continue;
+    const Eigen::Vector3d r = p - c_points[j];
+    // A match lies on the candidate's local surface; a point of a wall shifted along its own
+    // plane still matches, one of a perpendicular wall does not.
+    const double d_sq = hasNormal(c_covs[j]) ? squaredPlaneDistance(c_covs[j], r) : dist_sq;
+    if (d_sq <= plane_sq) ++matched;
+  }
+  return static_cast<double>(matched) / static_cast<double>(query.scored_points.size());
+}
+
+LoopDetector::Registration LoopDetector::registerPair(uint32_t candidate, uint32_t query,
+                                                      const Pose3& guess, double gate_m) const {
+  GicpConfig gc;
+  gc.k_neighbors = config_.registration.k_neighbors;
+  gc.max_iterations = config_.registration.max_iterations;
+  gc.num_threads = config_.registration.num_threads;
+  gc.max_correspondence_distance_m = gate_m;
+  Gicp gicp(gc);
+  gicp.setTarget(keyframes_.at(candidate).cloud);
+  gicp.setSource(keyframes_.at(query).cloud);
+  Registration r;
+  r.candidate = candidate;
+  r.gicp = gicp.align(guess);
+  r.score = matchScore(candidate, query, r.gicp.T_target_source);
+  return r;
+}
+
+LoopClosure LoopDetector::makeLoop(const Registration& r, uint32_t query, LoopPath path) const {
+  LoopClosure loop;
+  loop.from = r.candidate;
+  loop.to = query;
+  loop.T_from_to = r.gicp.T_target_source;
+  loop.score = r.score;
+  loop.fitness = r.gicp.fitness;
+  loop.path = path;
+  // The information is the GICP Hessian at the result under the narrow (coarse) gate, whatever
+  // gate found the pose, so loops from both paths weigh alike in the graph.
+  GicpConfig gc;
+  gc.k_neighbors = config_.registration.k_neighbors;
+  gc.num_threads = config_.registration.num_threads;
+  gc.max_correspondence_distance_m = config_.cosg.coarse_correspondence_m;
+  Gicp gicp(gc);
+  gicp.setTarget(keyframes_.at(r.candidate).cloud);
+  gicp.setSource(keyframes_.at(query).cloud);
+  loop.information =
+      config_.registration.information_scale * gicp.evaluate(loop.T_from_to).information;
+  return loop;
+}
+
+bool LoopDetector::isRecent(const Keyframe& candidate, uint32_t candidate_id, const Keyframe& query,
+                            uint32_t query_id) const {
+  const int64_t id_gap =
+      std::abs(static_cast<int64_t>(query_id) - static_cast<int64_t>(candidate_id));
+  return id_gap < config_.cosg.min_id_separation ||
+         std::abs(query.stamp - candidate.stamp) < config_.cosg.min_time_separation_s;
+}
+
+void LoopDetector::finish(LoopDetection* detection, double elapsed_ms) {
+  detection->time_ms = elapsed_ms;
+  ++stats_.detections;
+  stats_.registrations += detection->registrations;
+  stats_.total_ms += elapsed_ms;
+  for (const LoopClosure& loop : detection->loops) {
+    if (loop.path == LoopPath::kCoarse) ++stats_.coarse_loops;
+    if (loop.path == LoopPath::kFine) ++stats_.fine_loops;
+    if (loop.path == LoopPath::kDistance) ++stats_.distance_loops;
+  }
+}
+
+LoopDetection LoopDetector::skipped(const std::string& why, const Stopwatch& watch) {
+  LoopDetection det;
+  det.skipped = why;
+  finish(&det, watch.elapsedMs());
+  return det;
+}
+
+LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
+                                         const std::vector<uint32_t>& room_keyframe_ids) {
+  Stopwatch watch;
+  auto query_it = keyframes_.find(query_id);
+  if (query_it == keyframes_.end()) return skipped("unknown query keyframe", watch);
+  LoopDetection det;
+  const Keyframe& query = query_it->second;
+  const CosgLoopConfig& cc = config_.cosg;
+  // The room's other keyframes: their estimates define the room's extent and partitions.
+  std::vector<uint32_t> room;
+  std::vector<Eigen::Vector2d> positions;
+  for (uint32_t id : std::set<uint32_t>(room_keyframe_ids.begin(), room_keyframe_ids.end())) {
+    auto it = keyframes_.find(id);
+    if (id == query_id || it == keyframes_.end()) continue;
+    room.push_back(id);
+    positions.push_back(it->second.T_map_base.translation().head<2>());
+  }
+  if (room.empty()) return skipped("the room has no other known keyframe", watch);
+  const Eigen::Vector3d q_pos = query.T_map_base.translation();
+  const RoomPartitions parts = partitionRoom(positions, q_pos.head<2>(), cc.partition_length_m);
+  det.partitions = static_cast<int>(parts.centers.size());
+  det.searched_partitions = parts.selected;
+
+  // Coarse path: register the nearest candidates of each searched partition from the estimates.
+  std::vector<std::vector<Registration>> coarse(parts.selected.size());
+  for (size_t s = 0; s < parts.selected.size(); ++s) {
+    std::vector<std::pair<double, uint32_t>> near;  // (distance, id)
+    for (size_t i = 0; i < room.size(); ++i) {
+      if (parts.index_of[i] != parts.selected[s]) continue;
+      const Keyframe& cand = keyframes_.at(room[i]);
+      if (isRecent(cand, room[i], query, query_id)) continue;
+      const double d = (cand.T_map_base.translation() - q_pos).norm();
+      if (d <= cc.d_loop_m) near.emplace_back(d, room[i]);
+    }
+    std::sort(near.begin(), near.end());
+    for (size_t k = 0; k < near.size(); ++k) {
+      const uint32_t id = near[k].second;
+      det.candidates.push_back(id);
+      if (k >= static_cast<size_t>(cc.max_candidates_per_partition)) continue;
+      const Pose3 guess = keyframes_.at(id).T_map_base.inverse() * query.T_map_base;
+      coarse[s].push_back(registerPair(id, query_id, guess, cc.coarse_correspondence_m));
+      det.registered.push_back(id);
+      det.coarse_scores.push_back(coarse[s].back().score);
+      ++det.registrations;
+    }
+  }
+  // Fig. 5(b): the best pair of each searched partition is a loop when it reaches S_coarse.
+  for (const auto& regs : coarse) {
+    auto best = std::max_element(regs.begin(), regs.end(),
+                                 [](const auto& a, const auto& b) { return a.score < b.score; });
+    if (best != regs.end() && best->score >= cc.s_coarse) {
+      det.loops.push_back(makeLoop(*best, query_id, LoopPath::kCoarse));
+    }
+  }
+  if (!det.loops.empty() || cc.max_fine_candidates == 0) {
+    finish(&det, watch.elapsedMs());
+    return det;
+  }
+  // Fine path: no pair reached S_coarse, typically because the estimates are too far off for the
+  // narrow gate. Weaker matches reaching S_fine are re-registered from the estimate with gates
+  // shrinking stage by stage (coarse-to-fine); the refined pose must still earn S_coarse, as a
+  // wide gate can also settle on a wrong but locally consistent pose.
+  std::vector<const Registration*> weak;
+  for (const auto& regs : coarse) {
+    for (const Registration& r : regs) {
+      if (r.score >= cc.s_fine) weak.push_back(&r);
+    }
+  }
+  std::sort(weak.begin(), weak.end(), [](auto a, auto b) { return a->score > b->score; });
+  if (weak.size() > static_cast<size_t>(cc.max_fine_candidates)) {
+    weak.resize(cc.max_fine_candidates);
+  }
+  std::optional<Registration> best_fine;
+  for (const Registration* w : weak) {
+    Pose3 pose = keyframes_.at(w->candidate).T_map_base.inverse() * query.T_map_base;
+    Registration refined;
+    for (double gate : cc.fine_correspondence_schedule_m) {
+      refined = registerPair(w->candidate, query_id, pose, gate);
+      pose = refined.gicp.T_target_source;
+      ++det.registrations;
+    }
+    if (!best_fine || refined.score > best_fine->score) best_fine = refined;
+  }
+  if (best_fine && best_fine->score >= cc.s_coarse) {
+    det.loops.push_back(makeLoop(*best_fine, query_id, LoopPath::kFine));
+  }
+  finish(&det, watch.elapsedMs());
+  return det;
+}
+
+}  // namespace tacs

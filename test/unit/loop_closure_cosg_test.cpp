@@ -1,0 +1,181 @@
+// CoSG-LCD (paper Sec. III-D): room-triggered loop detection in the synthetic box room.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "common/loop_closure_scene.h"
+#include "tacs_graphs/loop_closure/loop_detector.h"
+
+namespace tacs {
+namespace {
+
+using test::roomPose;
+
+bool contains(const std::vector<uint32_t>& ids, uint32_t id) {
+  return std::find(ids.begin(), ids.end(), id) != ids.end();
+}
+
+// First visit of the room: keyframes 0..4 along a curve, estimates exact.
+std::vector<uint32_t> addFirstVisit(LoopDetector* detector, const test::BoxRoom& room) {
+  const Pose3 poses[] = {roomPose(2.0, 2.0, 0), roomPose(3.0, 2.2, 10), roomPose(4.0, 2.6, 20),
+                         roomPose(5.0, 3.0, 30), roomPose(6.0, 3.5, 40)};
+  std::vector<uint32_t> ids;
+  for (uint32_t id = 0; id < 5; ++id) {
+    test::addRoomKeyframe(detector, room, id, poses[id], poses[id]);
+    ids.push_back(id);
+  }
+  return ids;
+}
+
+struct Revisit {
+  LoopDetection detection;
+  Pose3 truth_query;
+};
+
+// The robot comes back (keyframe 50) at a known pose; its estimate is off by `error`.
+Revisit revisit(LoopDetector* detector, const test::BoxRoom& room, const Pose3& error) {
+  Revisit out;
+  out.truth_query = roomPose(4.3, 2.9, 35);
+  std::vector<uint32_t> room_ids = addFirstVisit(detector, room);
+  test::addRoomKeyframe(detector, room, 50, out.truth_query, out.truth_query * error);
+  room_ids.push_back(50);
+  out.detection = detector->detectInRoom(50, room_ids);
+  return out;
+}
+
+void expectCorrect(const LoopClosure& loop, const Pose3& truth_query) {
+  const Pose3 first[] = {roomPose(2.0, 2.0, 0), roomPose(3.0, 2.2, 10), roomPose(4.0, 2.6, 20),
+                         roomPose(5.0, 3.0, 30), roomPose(6.0, 3.5, 40)};
+  ASSERT_LT(loop.from, 5u);
+  EXPECT_EQ(loop.to, 50u);
+  const Pose3 truth = first[loop.from].inverse() * truth_query;
+  EXPECT_LT(test::translationError(loop.T_from_to, truth), 0.05);
+  EXPECT_LT(test::rotationErrorDeg(loop.T_from_to, truth), 0.5);
+}
+
+TEST(LoopClosureCosg, ClosesARevisitWithTheCorrectRelativePose) {
+  const test::BoxRoom room;
+  LoopDetector detector{LoopClosureConfig()};
+  const Revisit r =
+      revisit(&detector, room, poseFromXyzRpy(0.05, -0.04, 0.0, 0.0, 0.0, 1.0 * M_PI / 180.0));
+  ASSERT_EQ(r.detection.loops.size(), 1u);
+  const LoopClosure& loop = r.detection.loops.front();
+  EXPECT_EQ(loop.path, LoopPath::kCoarse);
+  EXPECT_GE(loop.score, detector.config().cosg.s_coarse);
+  expectCorrect(loop, r.truth_query);
+  // The information is usable by the backend: symmetric and positive on the diagonal.
+  EXPECT_TRUE(loop.information.isApprox(loop.information.transpose()));
+  EXPECT_GT(loop.information.diagonal().minCoeff(), 0.0);
+  EXPECT_EQ(detector.stats().coarse_loops, 1);
+  EXPECT_EQ(detector.stats().detections, 1);
+  EXPECT_GT(detector.stats().total_ms, 0.0);
+}
+
+TEST(LoopClosureCosg, LargeInitialErrorClosesThroughTheFinePathOnly) {
+  const test::BoxRoom room;
+  // 1 m and 10 deg off: the narrow gate of the coarse path settles on a wrong pose for every
+  // candidate (their scores stay between S_fine and S_coarse), the fine path recovers it.
+  for (const Pose3& error : {poseFromXyzRpy(0.707, 0.707, 0.0, 0.0, 0.0, 10.0 * M_PI / 180.0),
+                             poseFromXyzRpy(-0.707, -0.707, 0.0, 0.0, 0.0, -10.0 * M_PI / 180.0)}) {
+    SCOPED_TRACE(error.translation().transpose());
+    LoopClosureConfig coarse_only;
+    coarse_only.cosg.max_fine_candidates = 0;
+    LoopDetector coarse_detector(coarse_only);
+    const Revisit coarse = revisit(&coarse_detector, room, error);
+    EXPECT_TRUE(coarse.detection.loops.empty());
+    ASSERT_EQ(coarse.detection.coarse_scores.size(), 5u);
+    for (double score : coarse.detection.coarse_scores) {
+      EXPECT_LT(score, coarse_only.cosg.s_coarse);
+      EXPECT_GE(score, coarse_only.cosg.s_fine);
+    }
+
+    LoopDetector detector{LoopClosureConfig()};
+    const Revisit r = revisit(&detector, room, error);
+    ASSERT_EQ(r.detection.loops.size(), 1u);
+    EXPECT_EQ(r.detection.loops.front().path, LoopPath::kFine);
+    EXPECT_GE(r.detection.loops.front().score, detector.config().cosg.s_coarse);
+    expectCorrect(r.detection.loops.front(), r.truth_query);
+    EXPECT_EQ(detector.stats().fine_loops, 1);
+    // 5 coarse registrations, then 3 weak matches refined in 3 stages each.
+    EXPECT_EQ(r.detection.registrations, 5 + 3 * 3);
+  }
+}
+
+TEST(LoopClosureCosg, AWrongRoomGivesNoLoop) {
+  // The "revisit" is a different room: a 7 x 5 m room with other furniture.
+  test::BoxRoom first, other;
+  other.room.hi = {7.0, 5.0, 2.8};
+  other.obstacles = {{{1.0, 3.0, 0.0}, {2.5, 4.0, 1.2}}};
+  LoopDetector detector{LoopClosureConfig()};
+  std::vector<uint32_t> room_ids = addFirstVisit(&detector, first);
+  test::addRoomKeyframe(&detector, other, 50, roomPose(4.0, 2.5, 20), roomPose(4.0, 2.5, 20));
+  const LoopDetection d = detector.detectInRoom(50, room_ids);
+  EXPECT_FALSE(d.registered.empty());
+  EXPECT_TRUE(d.loops.empty());
+}
+
+TEST(LoopClosureCosg, OnlyOlderKeyframesOfTheRoomWithinDLoopAreTried) {
+  const test::BoxRoom room;
+  LoopClosureConfig config;
+  config.cosg.max_candidates_per_partition = 100;
+  LoopDetector detector(config);
+  const PointCloud cloud = test::keyframeCloud(room, roomPose(5, 3.5, 0), 1);
+  auto add = [&](uint32_t id, double stamp, double x, double y) {
+    detector.addKeyframe(id, stamp, roomPose(x, y, 0), cloud);
+  };
+  add(1, 1.0, 5.0, 3.0);     // in the room, near: tried
+  add(2, 2.0, 8.0, 3.0);     // in the room, 4 m away: tried
+  add(3, 3.0, 5.5, 3.5);     // near but not in the room: never tried
+  add(4, 4.0, 11.0, 3.0);    // in the room but 7 m away (> d_loop): never tried
+  add(40, 40.0, 5.0, 3.0);   // in the room but recent by id (query 50 - 40 < 20)
+  add(5, 95.0, 5.2, 3.0);    // old id but recent by time (100 - 95 < 20 s)
+  add(50, 100.0, 4.0, 3.0);  // the query
+  const LoopDetection d = detector.detectInRoom(50, {1, 2, 4, 5, 40, 50});
+  EXPECT_TRUE(contains(d.registered, 1));
+  EXPECT_TRUE(contains(d.registered, 2));
+  for (uint32_t never : {3u, 4u, 5u, 40u, 50u}) {
+    EXPECT_FALSE(contains(d.candidates, never)) << never;
+    EXPECT_FALSE(contains(d.registered, never)) << never;
+  }
+  EXPECT_EQ(d.registered.size(), 2u);
+}
+
+TEST(LoopClosureCosg, SearchesOnlyTheTwoPartitionsNearestTheQuery) {
+  const test::BoxRoom room;
+  LoopClosureConfig config;
+  config.cosg.partition_length_m = 3.0;  // a room 12 m long: partitions [0,3) [3,6) [6,9) [9,12]
+  config.cosg.max_candidates_per_partition = 100;
+  config.cosg.max_fine_candidates = 0;
+  LoopDetector detector(config);
+  const PointCloud cloud = test::keyframeCloud(room, roomPose(5, 3.5, 0), 1);
+  std::vector<uint32_t> room_ids;
+  for (uint32_t i = 0; i <= 12; ++i) {  // first pass: x = 0 .. 12 m
+    detector.addKeyframe(i, i, roomPose(i, 3.0, 0), cloud);
+    room_ids.push_back(i);
+  }
+  detector.addKeyframe(100, 100.0, roomPose(5.0, 3.2, 0), cloud);  // centres 1.5 4.5 7.5 10.5
+  room_ids.push_back(100);
+  const LoopDetection d = detector.detectInRoom(100, room_ids);
+  EXPECT_EQ(d.partitions, 4);
+  EXPECT_EQ(d.searched_partitions, (std::vector<int>{1, 2}));
+  // x = 1 and x = 2 are within d_loop but in partition 0; x = 10 is in a far partition too.
+  for (uint32_t id : d.registered) {
+    EXPECT_GE(id, 3u);
+    EXPECT_LE(id, 8u);
+  }
+  EXPECT_EQ(d.registered.size(), 6u);  // x = 3 .. 8
+}
+
+TEST(LoopClosureCosg, UnknownQueryOrEmptyRoomIsSkipped) {
+  LoopDetector detector{LoopClosureConfig()};
+  LoopDetection d = detector.detectInRoom(7, {1, 2});
+  EXPECT_FALSE(d.skipped.empty());
+  const test::BoxRoom room;
+  detector.addKeyframe(7, 0.0, roomPose(5, 3, 0), test::keyframeCloud(room, roomPose(5, 3, 0), 1));
+  d = detector.detectInRoom(7, {7, 99});
+  EXPECT_FALSE(d.skipped.empty());
+  EXPECT_EQ(d.registrations, 0);
+}
+
+}  // namespace
+}  // namespace tacs
