@@ -193,8 +193,9 @@ int run(const Options& o) {
   } else {
     source = std::make_unique<WorldSource>(o);
   }
-  tacs::Pipeline pipeline(loaded.config);
-  std::optional<Eigen::Affine3f> base_to_sensor;
+  // Built at the first usable scan, when the sensor extrinsic is known.
+  std::unique_ptr<tacs::Pipeline> pipeline_ptr;
+  Eigen::Affine3f base_to_sensor = Eigen::Affine3f::Identity();
   std::set<std::string> reported;  // each kind of bad scan is reported once
   tacs::Stopwatch watch;
   SensorScan scan;
@@ -207,20 +208,27 @@ int run(const Options& o) {
       }
       continue;
     }
-    if (!base_to_sensor) base_to_sensor = source->baseToSensor(scan.frame_id).cast<float>();
+    if (!pipeline_ptr) {
+      const tacs::Pose3 T_base_sensor = source->baseToSensor(scan.frame_id);
+      base_to_sensor = T_base_sensor.cast<float>();
+      pipeline_ptr = std::make_unique<tacs::Pipeline>(loaded.config, T_base_sensor);
+    }
     tacs::PointCloud in_base;
-    pcl::transformPointCloud(scan.cloud, in_base, *base_to_sensor);
-    const tacs::ScanOutcome outcome = pipeline.processScan(scan.stamp, in_base);
+    pcl::transformPointCloud(scan.cloud, in_base, base_to_sensor);
+    const tacs::ScanOutcome outcome = pipeline_ptr->processScan(scan.stamp, in_base);
     if (!outcome.accepted && reported.insert(outcome.error).second) {
       std::cerr << "\n[tacs_offline] scan " << k << " rejected: " << outcome.error << "\n";
     }
     if (!o.quiet && (k % 20 == 0 || k == source->size())) {
       std::cerr << "\r[tacs_offline] scan " << k << "/" << source->size() << "  keyframes "
-                << pipeline.stats().keyframes << "  walls "
-                << pipeline.backend().wallMap().landmarks().size() << "  " << std::fixed
-                << std::setprecision(1) << 1e3 * k / watch.elapsedMs() << " scans/s" << std::flush;
+                << pipeline_ptr->stats().keyframes << "  walls "
+                << pipeline_ptr->backend().wallMap().landmarks().size() << "  rooms "
+                << pipeline_ptr->backend().roomCount() << "  " << std::fixed << std::setprecision(1)
+                << 1e3 * k / watch.elapsedMs() << " scans/s" << std::flush;
     }
   }
+  if (!pipeline_ptr) pipeline_ptr = std::make_unique<tacs::Pipeline>(loaded.config);
+  tacs::Pipeline& pipeline = *pipeline_ptr;
   pipeline.finish();
   const double wall_s = watch.elapsedMs() / 1e3;
   if (!o.quiet) std::cerr << "\n";
@@ -233,7 +241,8 @@ int run(const Options& o) {
             << pipeline.sceneGraph().walls.size() << " walls, "
             << pipeline.sceneGraph().rooms.size() << " rooms, " << wall_s << " s ("
             << (wall_s > 0 ? stats.scans / wall_s : 0.0) << " scans/s), t_FGO "
-            << pipeline.fgoSeconds() << " s -> " << o.out << "\n";
+            << pipeline.fgoSeconds() << " s, loops " << pipeline.sceneGraph().loops.size()
+            << ", t_LD " << pipeline.ldSeconds() << " s -> " << o.out << "\n";
   printAccuracy(pipeline, source->groundTruth());
   return stats.scans > stats.rejected_scans ? 0 : 1;
 }

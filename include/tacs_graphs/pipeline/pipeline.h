@@ -1,6 +1,8 @@
 // The whole SLAM pipeline run synchronously in one thread of control, as tacs_offline and the
-// benchmarks use it: odometry -> keyframes -> walls -> backend (the same core classes the ROS nodes
-// run, DESIGN.md "Two ways to run the same core"). Deterministic for a given input.
+// evaluation use it (the same core classes the ROS nodes run, DESIGN.md "Two ways to run the same
+// core"). Per keyframe: traversability -> traversable map, walls -> backend landmarks, room
+// segmentation -> backend rooms, loop detection (CoSG-LCD on a re-detected room, or the distance
+// baseline) -> backend loops, then the scheduled optimisation. Deterministic for a given input.
 #pragma once
 
 #include <cstdint>
@@ -11,8 +13,11 @@
 #include "tacs_graphs/backend/backend.h"
 #include "tacs_graphs/backend/map_export.h"
 #include "tacs_graphs/common/timing.h"
+#include "tacs_graphs/loop_closure/loop_detector.h"
 #include "tacs_graphs/odometry/lidar_odometry.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
+#include "tacs_graphs/rooms/room_segmenter.h"
+#include "tacs_graphs/traversability/traversable_map.h"
 #include "tacs_graphs/walls/wall_extractor.h"
 
 namespace tacs {
@@ -24,6 +29,8 @@ struct ScanOutcome {
   bool keyframe = false;
   uint32_t keyframe_id = 0;
   size_t walls = 0;        // wall observations of the keyframe
+  size_t rooms = 0;        // room observations emitted at the keyframe
+  size_t loops = 0;        // loop closures accepted at the keyframe
   bool optimized = false;  // the backend optimised after this scan
 };
 
@@ -33,19 +40,22 @@ struct PipelineStats {
   size_t rejected_scans = 0;
   size_t keyframes = 0;
   size_t wall_observations = 0;
-  std::string first_rejection;  // the reason of the first rejected scan, for the log
+  size_t room_observations = 0;
+  size_t room_redetections = 0;  // observations merged into a known room (CoSG-LCD triggers)
+  std::string first_rejection;   // the reason of the first rejected scan, for the log
 };
 
 class Pipeline {
  public:
-  /// Validates the configuration (throws ConfigError).
-  explicit Pipeline(const PipelineConfig& config);
+  /// Validates the configuration (throws ConfigError). T_base_sensor is the ray origin of the
+  /// voxel room baseline.
+  explicit Pipeline(const PipelineConfig& config, const Pose3& T_base_sensor = Pose3::Identity());
 
   /// Processes one scan given in the base frame (the caller applies the sensor extrinsic). Never
   /// throws on bad data: the scan is rejected with a reason and the state is kept.
   ScanOutcome processScan(double stamp, const PointCloud& scan_in_base);
 
-  /// Final optimisation after the last scan.
+  /// Emits the room still being accumulated, then a final optimisation.
   void finish();
 
   const PipelineConfig& config() const { return config_; }
@@ -60,20 +70,33 @@ class Pipeline {
   const StageTimes& stageTimes() const { return stage_times_; }
   /// Total backend optimisation time (t_FGO) and loop-detection time (t_LD) in seconds.
   double fgoSeconds() const { return backend_.totalOptimizationMs() / 1e3; }
-  double ldSeconds() const { return ld_ms_ / 1e3; }
+  double ldSeconds() const { return loop_detector_.stats().total_ms / 1e3; }
+  const LoopDetector& loopDetector() const { return loop_detector_; }
+  const TraversableMap& traversableMap() const { return traversable_map_; }
 
  private:
   void processKeyframe(const OdometryResult& odom, ScanOutcome* outcome);
+  /// Hands rooms to the backend; a room re-detection triggers CoSG-LCD (Sec. III-D).
+  void applyRooms(const RoomSegmentationResult& result, uint32_t query_keyframe,
+                  ScanOutcome* outcome);
+  void applyLoops(const LoopDetection& detection, ScanOutcome* outcome);
+  /// Optimised poses back into the traversable map and the loop detector.
+  void propagatePoses(bool rebuild_traversable_map);
 
   PipelineConfig config_;
   LidarOdometry odometry_estimator_;
   WallExtractor wall_extractor_;
+  TraversabilityMapper traversability_mapper_;
+  TraversableMap traversable_map_;
+  RoomSegmenter room_segmenter_;
+  LoopDetector loop_detector_;
   Backend backend_;
+  std::vector<uint32_t> keyframe_ids_;
+  bool loop_since_pose_update_ = false;
   PipelineStats stats_;
   Trajectory odometry_;
   KeyframeClouds keyframe_clouds_;
   StageTimes stage_times_;
-  double ld_ms_ = 0.0;
 };
 
 }  // namespace tacs

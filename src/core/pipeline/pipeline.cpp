@@ -13,10 +13,14 @@ PipelineConfig validated(const PipelineConfig& config) {
 }
 }  // namespace
 
-Pipeline::Pipeline(const PipelineConfig& config)
+Pipeline::Pipeline(const PipelineConfig& config, const Pose3& T_base_sensor)
     : config_(validated(config)),
       odometry_estimator_(config_.odometry),
       wall_extractor_(config_.walls.extraction),
+      traversability_mapper_(config_.traversability),
+      traversable_map_(config_.traversability),
+      room_segmenter_(config_.rooms, config_.walls.axes, T_base_sensor),
+      loop_detector_(config_.loop_closure),
       backend_(config_.backend, config_.walls.association) {}
 
 ScanOutcome Pipeline::processScan(double stamp, const PointCloud& scan_in_base) {
@@ -37,30 +41,99 @@ ScanOutcome Pipeline::processScan(double stamp, const PointCloud& scan_in_base) 
 }
 
 void Pipeline::processKeyframe(const OdometryResult& odom, ScanOutcome* outcome) {
+  const uint32_t id = odom.keyframe_id;
   outcome->keyframe = true;
-  outcome->keyframe_id = odom.keyframe_id;
+  outcome->keyframe_id = id;
   ++stats_.keyframes;
+  keyframe_ids_.push_back(id);
+  const PointCloud& cloud = *odom.keyframe_cloud;
   // Kept for the map, the OctoMap and loop closure at the odometry's grid: a long run keeps
   // thousands of keyframes.
-  keyframe_clouds_[odom.keyframe_id] = PointCloud::ConstPtr(new PointCloud(
-      voxelDownsample(*odom.keyframe_cloud, config_.odometry.preprocess.voxel_size_m)));
-  backend_.addKeyframe(odom.keyframe_id, odom.stamp, odom.T_odom_base, odom.information);
+  const PointCloud::ConstPtr coarse(
+      new PointCloud(voxelDownsample(cloud, config_.odometry.preprocess.voxel_size_m)));
+  keyframe_clouds_[id] = coarse;
+  backend_.addKeyframe(id, odom.stamp, odom.T_odom_base, odom.information);
+  const Pose3 T_map_base = backend_.keyframePose(id);
 
-  // Walls (Sec. III-B-1) from the keyframe's downsampled scan, associated to map landmarks.
-  const WallExtractionResult walls = wall_extractor_.extract(*odom.keyframe_cloud);
+  // Walls (Sec. III-B-1), associated to the backend's landmarks.
+  const WallExtractionResult walls = wall_extractor_.extract(cloud);
   stage_times_.add("walls", walls.time_ms);
-  backend_.addWallObservations(odom.keyframe_id, walls.walls);
+  backend_.addWallObservations(id, walls.walls);
   outcome->walls = walls.walls.size();
   stats_.wall_observations += walls.walls.size();
+
+  // Traversable graph of the keyframe into the map (Sec. III-A, III-B-2); the voxel baseline
+  // segments from the clouds instead.
+  if (config_.rooms.method == "tacs") {
+    const TraversabilityResult trav = traversability_mapper_.process(cloud);
+    Stopwatch watch;
+    traversable_map_.insert(trav.graph, T_map_base, id);
+    stage_times_.add("traversability", trav.time_ms + watch.elapsedMs());
+  }
+
+  loop_detector_.addKeyframe(id, odom.stamp, T_map_base, *coarse);
+  const RoomSegmentationResult rooms =
+      room_segmenter_.processKeyframe(id, T_map_base, traversable_map_, backend_.wallMap(), &cloud);
+  stage_times_.add("rooms", rooms.time_ms);
+  applyRooms(rooms, id, outcome);
+  if (config_.loop_closure.method == "distance") {
+    applyLoops(loop_detector_.detectByDistance(id), outcome);
+  }
 
   if (const auto report = backend_.optimizeIfDue()) {
     stage_times_.add("backend", report->time_ms);
     outcome->optimized = true;
+    // A loop moves the map: rooms must see the corrected free space. Otherwise only the loop
+    // detector's pose estimates follow (cheap).
+    propagatePoses(loop_since_pose_update_);
   }
+}
+
+void Pipeline::applyRooms(const RoomSegmentationResult& result, uint32_t query_keyframe,
+                          ScanOutcome* outcome) {
+  outcome->rooms += result.observations.size();
+  stats_.room_observations += result.observations.size();
+  for (const RoomAssociation& a : result.associations) {
+    const auto room = room_segmenter_.rooms().find(a.room_id);
+    if (room == room_segmenter_.rooms().end()) continue;
+    backend_.setRoom(room->second);
+    for (const auto& [mapped, observed] : a.wall_to_wall) backend_.addWallToWall(mapped, observed);
+    if (a.created) continue;
+    ++stats_.room_redetections;
+    if (config_.loop_closure.method == "cosg" && backend_.hasKeyframe(query_keyframe)) {
+      applyLoops(loop_detector_.detectInRoom(query_keyframe, room->second.room.keyframe_ids),
+                 outcome);
+    }
+  }
+}
+
+void Pipeline::applyLoops(const LoopDetection& detection, ScanOutcome* outcome) {
+  stage_times_.add("loop_detection", detection.time_ms);
+  for (const LoopClosure& loop : detection.loops) {
+    backend_.addLoopClosure(loop.from, loop.to, loop.T_from_to, loop.information, loop.score);
+    ++outcome->loops;
+    loop_since_pose_update_ = true;
+  }
+}
+
+void Pipeline::propagatePoses(bool rebuild_traversable_map) {
+  std::map<uint32_t, Pose3> poses;
+  for (uint32_t id : keyframe_ids_) poses[id] = backend_.keyframePose(id);
+  loop_detector_.updatePoses(poses);
+  if (rebuild_traversable_map && config_.rooms.method == "tacs") {
+    Stopwatch watch;
+    traversable_map_.updatePoses(poses);
+    stage_times_.add("traversability", watch.elapsedMs());
+  }
+  if (rebuild_traversable_map) loop_since_pose_update_ = false;
 }
 
 void Pipeline::finish() {
   if (stats_.keyframes == 0) return;
+  ScanOutcome outcome;
+  const RoomSegmentationResult rooms = room_segmenter_.finish(traversable_map_, backend_.wallMap());
+  stage_times_.add("rooms", rooms.time_ms);
+  applyRooms(rooms, keyframe_ids_.back(), &outcome);
   const OptimizationReport report = backend_.optimize();
   stage_times_.add("backend", report.time_ms);
 }
