@@ -31,7 +31,7 @@ PointCloud::Ptr smallCloud() {
 Matrix6d information() { return Matrix6d::Identity() * 1e4; }
 
 TEST(BackendSession, WallsBeforeTheirKeyframeAreBuffered) {
-  BackendSession session(PipelineConfig(), BackendSessionOptions());
+  BackendSession session{PipelineConfig(), BackendSessionOptions()};
   EXPECT_EQ(session.addWalls(0, wallAhead()), BackendSession::Outcome::kBuffered);
   EXPECT_EQ(session.pendingCount(), 1u);
   EXPECT_EQ(session.addKeyframe(0, 1.0, Pose3::Identity(), Matrix6d::Zero(), smallCloud()),
@@ -54,7 +54,7 @@ TEST(BackendSession, WallsBeforeTheirKeyframeAreBuffered) {
 }
 
 TEST(BackendSession, LoopsWaitForBothKeyframes) {
-  BackendSession session(PipelineConfig(), BackendSessionOptions());
+  BackendSession session{PipelineConfig(), BackendSessionOptions()};
   session.addKeyframe(0, 1.0, Pose3::Identity(), Matrix6d::Zero(), nullptr);
   LoopEdge loop;
   loop.from = 0;
@@ -67,7 +67,7 @@ TEST(BackendSession, LoopsWaitForBothKeyframes) {
 }
 
 TEST(BackendSession, RoomObservationsUpdateTheNearbyRoom) {
-  BackendSession session(PipelineConfig(), BackendSessionOptions());
+  BackendSession session{PipelineConfig(), BackendSessionOptions()};
   session.addKeyframe(0, 1.0, Pose3::Identity(), Matrix6d::Zero(), nullptr);
   session.addKeyframe(1, 2.0, poseFromXyzRpy(1, 0, 0, 0, 0, 0), information(), nullptr);
   RoomNode a;
@@ -117,7 +117,7 @@ TEST(BackendSession, SaveWritesProductsAndRecoverRestoresTheGraph) {
   for (const char* name : {"scene_graph.json", "map.pcd", "map.bt", "backend_journal.json"}) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/" + name)) << name;
   }
-  BackendSession restarted(config, BackendSessionOptions());
+  BackendSession restarted{config, BackendSessionOptions()};
   EXPECT_EQ(restarted.recover(dir), 4u);
   const SceneGraph after = restarted.sceneGraph();
   ASSERT_EQ(after.keyframes.size(), 4u);
@@ -134,7 +134,7 @@ TEST(BackendSession, SaveWritesProductsAndRecoverRestoresTheGraph) {
 }
 
 TEST(BackendSession, RecoverFromMissingFolderThrowsNamingTheFile) {
-  BackendSession session(PipelineConfig(), BackendSessionOptions());
+  BackendSession session{PipelineConfig(), BackendSessionOptions()};
   try {
     session.recover("/nonexistent/tacs");
     FAIL() << "no exception";

@@ -50,11 +50,15 @@ TEST(ExternalOdometry, RejectsScansWithoutPoseOrOutOfOrder) {
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.error.find("no external odometry"), std::string::npos);
   odom.addPose(1.0, Pose3::Identity());
-  odom.addPose(2.0, Pose3::Identity());
-  EXPECT_TRUE(odom.process(1.5, scan()).ok);
-  r = odom.process(1.2, scan());
+  odom.addPose(1.4, Pose3::Identity());
+  odom.addPose(2.4, Pose3::Identity());
+  EXPECT_TRUE(odom.process(1.2, scan()).ok);
+  EXPECT_FALSE(odom.process(1.1, scan()).ok);
+  EXPECT_TRUE(odom.process(1.3, PointCloud()).error.find("too few") != std::string::npos);
+  // Poses further apart than max_time_gap_s are not interpolated.
+  r = odom.process(1.9, scan());
   EXPECT_FALSE(r.ok);
-  EXPECT_TRUE(odom.process(1.8, PointCloud()).error.find("too few") != std::string::npos);
+  EXPECT_NE(r.error.find("no external odometry"), std::string::npos);
 }
 
 }  // namespace
