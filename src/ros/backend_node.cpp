@@ -139,6 +139,9 @@ void BackendNode::publishTf(const ros::TimerEvent&) {
   // Stamped slightly ahead, as usual for map -> odom, so that lookups at the newest odometry
   // time succeed between two broadcasts.
   const double stamp = (ros::Time::now() + ros::Duration(0.1)).toSec();
+  // A paused (simulated) clock fires the timer at one time again: tf2 would reject the repeat.
+  if (stamp <= last_tf_stamp_) return;
+  last_tf_stamp_ = stamp;
   tf_broadcaster_.sendTransform(toTransformMsg(session_->mapToOdom(), config_.frames.map_frame,
                                                config_.frames.odom_frame, stamp));
 }

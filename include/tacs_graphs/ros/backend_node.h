@@ -57,6 +57,7 @@ class BackendNode {
   bool save_on_shutdown_ = true;
   std::unique_ptr<BackendSession> session_;
   double latest_stamp_ = 0.0;
+  double last_tf_stamp_ = 0.0;
   bool map_dirty_ = false;
 
   ros::Subscriber keyframe_sub_, walls_sub_, rooms_sub_, loop_sub_;
