@@ -216,10 +216,12 @@ nlohmann::json BackendSession::journal() const {
 void BackendSession::save(const std::string& dir, const MapExportConfig& map_config) const {
   ensureDirectory(dir);
   const SceneGraph graph = sceneGraph();
+  // Fastest first: a shutdown cut short (roslaunch escalates to SIGTERM after its SIGINT
+  // timeout) still leaves the graph, the journal and the cloud; the OctoMap ray casting comes last.
   graph.save(dir + "/scene_graph.json");
+  writeFileAtomically(dir + "/backend_journal.json", journal().dump());
   writePcdAtomically(dir + "/map.pcd", mapCloud(map_config.cloud_voxel_m));
   writeOctomap(dir + "/map.bt", graph, clouds_, map_config);
-  writeFileAtomically(dir + "/backend_journal.json", journal().dump());
 }
 
 size_t BackendSession::recover(const std::string& dir) {

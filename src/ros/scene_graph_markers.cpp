@@ -61,11 +61,12 @@ void addWalls(const SceneGraph& graph, const std::string& frame, double stamp,
     m.pose = toPoseMsg(poseFromXyzRpy(0, 0, 0, 0, 0, yaw));
     m.pose.position = point(wallAnchor(w));
     m.scale.x = length;
-    m.scale.y = 0.04;
+    m.scale.y = 0.08;
     m.scale.z = height;
     // Colour by facing direction so the two faces of a wall and the axes stand apart.
     const double hue = std::atan2(w.normal.y(), w.normal.x());
-    m.color = rgba(0.5f + 0.4f * std::cos(hue), 0.5f + 0.4f * std::sin(hue), 0.8f, 0.6f);
+    m.color = rgba(0.5f + 0.5f * std::cos(hue), 0.5f + 0.5f * std::sin(hue),
+                   0.5f - 0.5f * std::cos(hue), 0.85f);
     out->markers.push_back(m);
   }
 }

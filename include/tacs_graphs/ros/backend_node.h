@@ -1,7 +1,8 @@
 // The backend node: keyframes, wall observations, room observations and loop closures ->
 // Backend (the single owner of the scene graph) -> /tacs/scene_graph, TF map -> odom,
 // /tacs/markers, /tacs/map_points; service ~save writes scene_graph.json, map.bt, map.pcd (and
-// the measurement journal) into ~output_dir, as does a shutdown.
+// the measurement journal) into ~output_dir, as does a shutdown. The OctoMap of a long run takes
+// a while to ray-cast: call ~save before stopping, or give roslaunch a longer --sigint-timeout.
 //
 // Private parameters:
 //   ~config_ns (/tacs)              pipeline configuration (frames, walls, backend, map_export)
