@@ -1,9 +1,10 @@
-#include "tacs_graphs/ros/cloud_conversion.h"
-
 #include <gtest/gtest.h>
+
 #include <sensor_msgs/point_cloud2_iterator.h>
 
 #include <limits>
+
+#include "tacs_graphs/ros/cloud_conversion.h"
 
 namespace tacs {
 namespace {

@@ -1,7 +1,7 @@
 // The parameter-server bridge, tested on XmlRpc values built in memory (no ROS master).
-#include "tacs_graphs/ros/params.h"
-
 #include <gtest/gtest.h>
+
+#include "tacs_graphs/ros/params.h"
 
 namespace tacs {
 namespace {
