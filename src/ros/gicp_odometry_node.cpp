@@ -51,25 +51,33 @@ GicpOdometryNode::GicpOdometryNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
 }
 
 Pose3 GicpOdometryNode::sensorExtrinsic(const std::string& sensor_frame) {
-  const auto cached = extrinsics_.find(sensor_frame);
-  if (cached != extrinsics_.end()) return cached->second;
   const std::string& base = config_.frames.base_frame;
+  const auto cached = extrinsics_.find(sensor_frame);
+  // A frame on the parameter fallback switches to TF as soon as TF knows it (a late /tf_static);
+  // canTransform without a wait keeps that check cheap for rigs that never publish it.
+  const bool from_parameter = fallback_frames_.count(sensor_frame) > 0;
+  if (cached != extrinsics_.end() &&
+      (!from_parameter || !tf_buffer_.canTransform(base, sensor_frame, ros::Time(0)))) {
+    return cached->second;
+  }
   if (sameFrame(sensor_frame, base)) return extrinsics_[sensor_frame] = Pose3::Identity();
   try {
-    // The extrinsic is static: the latest value is the value. A short wait lets /tf_static of a
-    // bag that has just started arrive.
-    const auto t = tf_buffer_.lookupTransform(base, sensor_frame, ros::Time(0), ros::Duration(0.2));
+    // The extrinsic is static: the latest value is the value. The first lookup waits briefly
+    // for the /tf_static of a bag that has just started.
+    const auto t = tf_buffer_.lookupTransform(base, sensor_frame, ros::Time(0),
+                                              ros::Duration(from_parameter ? 0.0 : 0.5));
     const Pose3 T = tf2::transformToEigen(t);
     ROS_INFO_STREAM("Sensor extrinsic " << base << " -> " << sensor_frame << " from TF: xyz "
                                         << T.translation().transpose());
+    fallback_frames_.erase(sensor_frame);
     return extrinsics_[sensor_frame] = T;
   } catch (const tf2::TransformException& e) {
     const Pose3 T = config_.frames.baseToSensor();
     ROS_WARN_STREAM("No TF " << base << " -> " << sensor_frame << " (" << e.what()
                              << "); using frames.base_to_sensor, xyz "
                              << T.translation().transpose());
-    // Not cached: a later TF (e.g. a late /tf_static) replaces the parameter.
-    return T;
+    fallback_frames_.insert(sensor_frame);
+    return extrinsics_[sensor_frame] = T;
   }
 }
 

@@ -23,6 +23,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "tacs_graphs/odometry/lidar_odometry.h"
@@ -63,6 +64,7 @@ class GicpOdometryNode {
   tf2_ros::TransformListener tf_listener_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   std::map<std::string, Pose3> extrinsics_;
+  std::set<std::string> fallback_frames_;  // extrinsic from frames.base_to_sensor, not TF
   WarnOnce warnings_;
   std::optional<double> last_stamp_;
   size_t scans_processed_ = 0;
