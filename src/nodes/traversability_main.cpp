@@ -13,7 +13,8 @@ int main(int argc, char** argv) {
   try {
     tacs::TraversabilityNode node(nh, pnh);
     tacs::spinUntilStopped();
-    ROS_INFO_STREAM("traversability: " << node.keyframesProcessed() << " keyframes processed");
+    ROS_INFO_STREAM("traversability: " << node.keyframesProcessed() << " keyframes processed, "
+                                       << node.warnings() << " warnings");
   } catch (const tacs::ConfigError& e) {
     ROS_FATAL_STREAM("traversability: bad configuration: " << e.what());
     return 1;

@@ -13,7 +13,8 @@ int main(int argc, char** argv) {
   try {
     tacs::WallExtractionNode node(nh, pnh);
     tacs::spinUntilStopped();
-    ROS_INFO_STREAM("wall_extraction: " << node.keyframesProcessed() << " keyframes processed");
+    ROS_INFO_STREAM("wall_extraction: " << node.keyframesProcessed() << " keyframes processed, "
+                                        << node.warnings() << " warnings");
   } catch (const tacs::ConfigError& e) {
     ROS_FATAL_STREAM("wall_extraction: bad configuration: " << e.what());
     return 1;

@@ -18,6 +18,8 @@ class TraversabilityNode {
   /// Reads the configuration under ~config_ns (default /tacs). Throws ConfigError.
   TraversabilityNode(ros::NodeHandle& nh, ros::NodeHandle& pnh);
   size_t keyframesProcessed() const { return processed_; }
+  /// Keyframes skipped or processed with a warning.
+  size_t warnings() const { return warnings_.total(); }
 
  private:
   void keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg);

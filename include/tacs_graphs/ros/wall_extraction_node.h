@@ -16,6 +16,8 @@ class WallExtractionNode {
   /// Reads the configuration under ~config_ns (default /tacs). Throws ConfigError.
   WallExtractionNode(ros::NodeHandle& nh, ros::NodeHandle& pnh);
   size_t keyframesProcessed() const { return processed_; }
+  /// Keyframes skipped or processed with a warning.
+  size_t warnings() const { return warnings_.total(); }
 
  private:
   void keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg);
