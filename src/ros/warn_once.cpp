@@ -5,11 +5,23 @@
 namespace tacs {
 
 void WarnOnce::warn(const std::string& what, const std::string& reason) {
+  warn(what, reason, reason);
+}
+
+void WarnOnce::warn(const std::string& what, const std::string& reason, const std::string& detail) {
   ++total_;
   if (counts_[reason]++ == 0) {
-    ROS_WARN_STREAM(what << ": " << reason << " (further messages for this reason are counted, "
-                                             "not logged)");
+    ROS_WARN_STREAM(what << ": " << detail
+                         << " (further messages for this reason are counted, "
+                            "not logged)");
   }
+}
+
+std::string WarnOnce::reasonKey(const std::string& detail) {
+  const size_t cut = detail.find_first_of("(:");
+  std::string key = detail.substr(0, cut);
+  while (!key.empty() && key.back() == ' ') key.pop_back();
+  return key;
 }
 
 size_t WarnOnce::count(const std::string& reason) const {

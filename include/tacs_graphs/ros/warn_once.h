@@ -11,6 +11,10 @@ class WarnOnce {
  public:
   /// Logs "<what>: <reason>" on the first occurrence of `reason`; counts every occurrence.
   void warn(const std::string& what, const std::string& reason);
+  /// As warn(), counting by `reason` but logging `detail` (the message with its numbers).
+  void warn(const std::string& what, const std::string& reason, const std::string& detail);
+  /// Counting key of a reason with numbers: the text before the first '(' or ':'.
+  static std::string reasonKey(const std::string& detail);
   size_t count(const std::string& reason) const;
   size_t total() const { return total_; }
 

@@ -1,0 +1,72 @@
+// The backend node: keyframes, wall observations, room observations and loop closures ->
+// Backend (the single owner of the scene graph) -> /tacs/scene_graph, TF map -> odom,
+// /tacs/markers, /tacs/map_points; service ~save writes scene_graph.json, map.bt, map.pcd (and
+// the measurement journal) into ~output_dir, as does a shutdown. The OctoMap of a long run takes
+// a while to ray-cast: call ~save before stopping, or give roslaunch a longer --sigint-timeout.
+//
+// Private parameters:
+//   ~config_ns (/tacs)              pipeline configuration (frames, walls, backend, map_export)
+//   ~output_dir ($ROS_HOME/tacs_graphs)  where ~save and the shutdown write
+//   ~save_on_shutdown (true)
+//   ~recover (false)                replay ~output_dir/backend_journal.json at start
+//   ~map_publish_period_s (5.0)     /tacs/map_points period (only while subscribed)
+//   ~tf_rate_hz (20.0)              map -> odom broadcast rate
+//   ~room_match_distance_m (1.0)    room observations closer than this update the same room
+#pragma once
+
+#include <ros/ros.h>
+#include <std_srvs/Trigger.h>
+#include <tacs_graphs/Keyframe.h>
+#include <tacs_graphs/LoopClosure.h>
+#include <tacs_graphs/RoomObservations.h>
+#include <tacs_graphs/WallObservations.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <memory>
+#include <string>
+
+#include "tacs_graphs/backend/map_export.h"
+#include "tacs_graphs/pipeline/pipeline_config.h"
+#include "tacs_graphs/ros/backend_session.h"
+#include "tacs_graphs/ros/warn_once.h"
+
+namespace tacs {
+
+class BackendNode {
+ public:
+  /// Throws ConfigError on a bad configuration.
+  BackendNode(ros::NodeHandle& nh, ros::NodeHandle& pnh);
+
+  /// Writes the run products if ~save_on_shutdown; logs instead of throwing.
+  void shutdown();
+
+ private:
+  void keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg);
+  void wallsCallback(const tacs_graphs::WallObservations::ConstPtr& msg);
+  void roomsCallback(const tacs_graphs::RoomObservations::ConstPtr& msg);
+  void loopCallback(const tacs_graphs::LoopClosure::ConstPtr& msg);
+  bool saveService(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  void publishTf(const ros::TimerEvent&);
+  void publishMap(const ros::TimerEvent&);
+  /// Optimises if due and publishes the scene graph and markers.
+  void update();
+  bool save(std::string* message);
+
+  PipelineConfig config_;
+  MapExportConfig map_config_;
+  std::string output_dir_;
+  bool save_on_shutdown_ = true;
+  std::unique_ptr<BackendSession> session_;
+  double latest_stamp_ = 0.0;
+  double last_tf_stamp_ = 0.0;
+  bool map_dirty_ = false;
+
+  ros::Subscriber keyframe_sub_, walls_sub_, rooms_sub_, loop_sub_;
+  ros::Publisher graph_pub_, marker_pub_, map_pub_;
+  ros::ServiceServer save_srv_;
+  ros::Timer tf_timer_, map_timer_;
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  WarnOnce warnings_;
+};
+
+}  // namespace tacs

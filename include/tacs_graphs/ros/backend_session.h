@@ -1,0 +1,89 @@
+// What the backend node keeps around the core Backend, without ROS: keyframe clouds for the map,
+// wall observations and loop closures that arrive before their keyframes (buffered by keyframe
+// id), room nodes from room observations, the saved products of a run and the measurement
+// journal that lets a restarted backend recover the graph.
+//
+// Rooms: the core Backend has no room interface yet, so room observations are associated here to
+// room nodes (same kind, centres closer than room_match_distance_m) and drawn in the scene graph
+// without entering the optimisation.
+#pragma once
+
+#include <deque>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tacs_graphs/backend/backend.h"
+#include "tacs_graphs/backend/map_export.h"
+#include "tacs_graphs/pipeline/pipeline_config.h"
+
+namespace tacs {
+
+struct BackendSessionOptions {
+  size_t max_pending_keyframes = 300;  // wall/loop messages waiting for this many keyframes at most
+  double room_match_distance_m = 1.0;  // [m] a room observation updates the room this close
+};
+
+class BackendSession {
+ public:
+  using Matrix6d = Eigen::Matrix<double, 6, 6>;
+  enum class Outcome { kAdded, kBuffered, kDuplicate, kDropped };
+
+  BackendSession(const PipelineConfig& config, const BackendSessionOptions& options);
+
+  /// Adds a keyframe and then any walls and loops that were waiting for it.
+  Outcome addKeyframe(uint32_t id, double stamp, const Pose3& T_odom_base,
+                      const Matrix6d& information, const PointCloud::ConstPtr& cloud);
+  /// Walls of keyframe `id` (base frame); buffered when the keyframe has not arrived yet.
+  Outcome addWalls(uint32_t keyframe_id, const std::vector<WallSegment>& walls);
+  /// A loop closure; buffered until both keyframes are known.
+  Outcome addLoop(const LoopEdge& edge, const Matrix6d& information);
+  /// Room observations (map frame); returns the room node id of each.
+  std::vector<uint32_t> addRooms(const std::vector<RoomNode>& observations);
+
+  std::optional<OptimizationReport> optimizeIfDue() { return backend_.optimizeIfDue(); }
+  OptimizationReport optimize() { return backend_.optimize(); }
+
+  /// The optimised scene graph with the room nodes and the keyframes' room ids.
+  SceneGraph sceneGraph() const;
+  Pose3 mapToOdom() const { return backend_.mapToOdom(); }
+  std::map<uint32_t, uint32_t> wallObservationCounts() const;
+  size_t keyframeCount() const { return journal_keyframes_.size(); }
+  size_t pendingCount() const;
+
+  /// Map cloud (map frame): keyframe clouds at optimised poses plus a recovered map, if any.
+  PointCloud mapCloud(double voxel_m) const;
+
+  /// Writes scene_graph.json, map.pcd, map.bt and backend_journal.json into `dir` (created if
+  /// needed), each atomically. Throws std::runtime_error.
+  void save(const std::string& dir, const MapExportConfig& map_config) const;
+
+  /// Replays backend_journal.json of `dir` (and loads map.pcd as a fixed part of the map).
+  /// Returns the number of keyframes recovered. Throws std::runtime_error naming the file.
+  size_t recover(const std::string& dir);
+
+  /// The measurements received so far (keyframes, walls, loops, rooms) as JSON.
+  nlohmann::json journal() const;
+
+ private:
+  void flushPending(uint32_t keyframe_id);
+  void dropStalePending();
+
+  PipelineConfig config_;
+  BackendSessionOptions options_;
+  Backend backend_;
+  KeyframeClouds clouds_;
+  PointCloud::Ptr recovered_map_;
+  std::map<uint32_t, std::vector<WallSegment>> pending_walls_;
+  std::vector<std::pair<LoopEdge, Matrix6d>> pending_loops_;
+  std::map<uint32_t, RoomNode> rooms_;
+  uint32_t next_room_id_ = 0;
+  uint32_t newest_keyframe_ = 0;
+  nlohmann::json journal_keyframes_ = nlohmann::json::array();
+  nlohmann::json journal_walls_ = nlohmann::json::array();
+  nlohmann::json journal_loops_ = nlohmann::json::array();
+};
+
+}  // namespace tacs

@@ -1,0 +1,73 @@
+// The gicp_odometry node: LiDAR clouds -> LidarOdometry (or external odometry) -> /tacs/odom,
+// TF odom -> base, /tacs/keyframe.
+//
+// Parameters: the pipeline configuration under ~config_ns (default /tacs; sections frames and
+// odometry), and private ones:
+//   ~points_topic (/velodyne_points)  cloud topic (a remap works as well)
+//   ~external_odom_topic ("")         nav_msgs/Odometry to use instead of GICP (S-Graphs bags)
+//   ~external_odom_sigma_xyz_m (0.05), ~external_odom_sigma_rot_deg (1.0): its keyframe noise
+//   ~publish_tf (true)                broadcast odom -> base (off when the bag already has it)
+//   ~keyframe_cloud_voxel_m (0.1)     voxel of the keyframe clouds sent to the other nodes; finer
+//                                     than the odometry's own grid because traversability needs
+//                                     several points per tri-grid node (0: odometry's cloud)
+#pragma once
+
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <deque>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+
+#include "tacs_graphs/odometry/lidar_odometry.h"
+#include "tacs_graphs/pipeline/pipeline_config.h"
+#include "tacs_graphs/ros/external_odometry.h"
+#include "tacs_graphs/ros/warn_once.h"
+
+namespace tacs {
+
+class GicpOdometryNode {
+ public:
+  /// Throws ConfigError on a bad configuration.
+  GicpOdometryNode(ros::NodeHandle& nh, ros::NodeHandle& pnh);
+
+  size_t scansProcessed() const { return scans_processed_; }
+  size_t scansDropped() const { return warnings_.total(); }
+
+ private:
+  void cloudCallback(const sensor_msgs::PointCloud2::ConstPtr& msg);
+  void externalOdomCallback(const nav_msgs::Odometry::ConstPtr& msg);
+  void processCloud(const sensor_msgs::PointCloud2::ConstPtr& msg);
+  /// T_base_sensor for `sensor_frame`: TF first, then frames.base_to_sensor (cached per frame).
+  Pose3 sensorExtrinsic(const std::string& sensor_frame);
+  void publish(const OdometryResult& result, const PointCloud& scan_in_base);
+
+  PipelineConfig config_;
+  bool publish_tf_ = true;
+  double keyframe_cloud_voxel_m_ = 0.1;
+  std::unique_ptr<LidarOdometry> gicp_;
+  std::unique_ptr<ExternalOdometry> external_;
+  std::deque<sensor_msgs::PointCloud2::ConstPtr> waiting_for_odometry_;
+
+  ros::Subscriber cloud_sub_;
+  ros::Subscriber external_sub_;
+  ros::Publisher odom_pub_;
+  ros::Publisher keyframe_pub_;
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  std::map<std::string, Pose3> extrinsics_;
+  std::set<std::string> fallback_frames_;  // extrinsic from frames.base_to_sensor, not TF
+  WarnOnce warnings_;
+  std::optional<double> last_stamp_;
+  size_t scans_processed_ = 0;
+};
+
+}  // namespace tacs

@@ -1,0 +1,54 @@
+// Core structures <-> the tacs_graphs messages exchanged by the nodes (msg/*.msg): keyframes,
+// wall observations, traversable graphs, room observations, loop closures and the scene graph.
+#pragma once
+
+#include <tacs_graphs/Keyframe.h>
+#include <tacs_graphs/LoopClosure.h>
+#include <tacs_graphs/RoomObservation.h>
+#include <tacs_graphs/SceneGraph.h>
+#include <tacs_graphs/TraversableGraph.h>
+#include <tacs_graphs/WallObservation.h>
+
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include "tacs_graphs/common/types.h"
+#include "tacs_graphs/scene_graph/scene_graph.h"
+#include "tacs_graphs/traversability/traversability_mapper.h"
+#include "tacs_graphs/walls/wall_segment.h"
+
+namespace tacs {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+/// A keyframe as the odometry publishes it; `cloud` is in the base frame.
+tacs_graphs::Keyframe toKeyframeMsg(uint32_t id, double stamp, const Pose3& T_odom_base,
+                                    const Matrix6d& information, const PointCloud& cloud,
+                                    const std::string& odom_frame, const std::string& base_frame);
+
+tacs_graphs::WallObservation toWallObservationMsg(const WallSegment& wall);
+WallSegment fromWallObservationMsg(const tacs_graphs::WallObservation& msg);
+
+/// The per-keyframe traversable graph (base frame) with its keyframe id and odometry pose.
+tacs_graphs::TraversableGraph toTraversableGraphMsg(const TravGraph& graph, uint32_t keyframe_id,
+                                                    const Pose3& T_odom_base,
+                                                    const std::string& base_frame, double stamp);
+/// Node flags `traversable` and `safe` are not carried by the message: they come back false.
+TravGraph fromTraversableGraphMsg(const tacs_graphs::TraversableGraph& msg);
+
+/// A room observation as a room node (id 0; the backend assigns ids). Absent walls (-1) are
+/// skipped, the others keep the order x+, x-, y+, y-.
+RoomNode fromRoomObservationMsg(const tacs_graphs::RoomObservation& msg);
+
+/// The loop edge carried by a loop-closure message (its information goes to the backend apart).
+LoopEdge fromLoopClosureMsg(const tacs_graphs::LoopClosure& msg);
+
+/// The scene graph message; `wall_observations` gives Wall.observation_count (0 when absent).
+tacs_graphs::SceneGraph toSceneGraphMsg(const SceneGraph& graph,
+                                        const std::map<uint32_t, uint32_t>& wall_observations,
+                                        const std::string& map_frame, double stamp);
+/// Inverse of toSceneGraphMsg (observation counts and loop information are dropped).
+SceneGraph fromSceneGraphMsg(const tacs_graphs::SceneGraph& msg);
+
+}  // namespace tacs

@@ -1,0 +1,35 @@
+// The traversability node: keyframes -> TraversabilityMapper -> /tacs/traversable_graph (one
+// TraversableGraph per keyframe, base frame, with the keyframe id and odometry pose), the
+// keyframe's ground and obstacle points (/tacs/ground_points, /tacs/obstacle_points) and the
+// graph drawn for rviz (/tacs/traversable_markers), both in the odometry frame.
+#pragma once
+
+#include <ros/ros.h>
+#include <tacs_graphs/Keyframe.h>
+
+#include "tacs_graphs/pipeline/pipeline_config.h"
+#include "tacs_graphs/ros/warn_once.h"
+#include "tacs_graphs/traversability/traversability_mapper.h"
+
+namespace tacs {
+
+class TraversabilityNode {
+ public:
+  /// Reads the configuration under ~config_ns (default /tacs). Throws ConfigError.
+  TraversabilityNode(ros::NodeHandle& nh, ros::NodeHandle& pnh);
+  size_t keyframesProcessed() const { return processed_; }
+  /// Keyframes skipped or processed with a warning.
+  size_t warnings() const { return warnings_.total(); }
+
+ private:
+  void keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg);
+
+  PipelineConfig config_;
+  TraversabilityMapper mapper_;
+  ros::Subscriber keyframe_sub_;
+  ros::Publisher graph_pub_, ground_pub_, obstacle_pub_, marker_pub_;
+  WarnOnce warnings_;
+  size_t processed_ = 0;
+};
+
+}  // namespace tacs

@@ -1,0 +1,33 @@
+// The wall_extraction node: keyframes -> WallExtractor (paper Sec. III-B-1) ->
+// /tacs/wall_observations (vertical planes in the keyframe's base frame, with the keyframe id).
+#pragma once
+
+#include <ros/ros.h>
+#include <tacs_graphs/Keyframe.h>
+
+#include "tacs_graphs/pipeline/pipeline_config.h"
+#include "tacs_graphs/ros/warn_once.h"
+#include "tacs_graphs/walls/wall_extractor.h"
+
+namespace tacs {
+
+class WallExtractionNode {
+ public:
+  /// Reads the configuration under ~config_ns (default /tacs). Throws ConfigError.
+  WallExtractionNode(ros::NodeHandle& nh, ros::NodeHandle& pnh);
+  size_t keyframesProcessed() const { return processed_; }
+  /// Keyframes skipped or processed with a warning.
+  size_t warnings() const { return warnings_.total(); }
+
+ private:
+  void keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg);
+
+  PipelineConfig config_;
+  WallExtractor extractor_;
+  ros::Subscriber keyframe_sub_;
+  ros::Publisher walls_pub_;
+  WarnOnce warnings_;
+  size_t processed_ = 0;
+};
+
+}  // namespace tacs

@@ -1,0 +1,182 @@
+#include "tacs_graphs/ros/backend_node.h"
+
+#include <tacs_graphs/SceneGraph.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <cstdlib>
+
+#include "tacs_graphs/ros/cloud_conversion.h"
+#include "tacs_graphs/ros/graph_messages.h"
+#include "tacs_graphs/ros/keyframe_input.h"
+#include "tacs_graphs/ros/message_conversion.h"
+#include "tacs_graphs/ros/params.h"
+#include "tacs_graphs/ros/scene_graph_markers.h"
+
+namespace tacs {
+namespace {
+
+std::string defaultOutputDir() {
+  if (const char* ros_home = std::getenv("ROS_HOME")) return std::string(ros_home) + "/tacs_graphs";
+  const char* home = std::getenv("HOME");
+  return std::string(home ? home : "/tmp") + "/.ros/tacs_graphs";
+}
+
+// The map_export section, read on its own so that the node works whether or not the pipeline
+// configuration lists it.
+MapExportConfig loadMapExportConfig(const ros::NodeHandle& nh, const std::string& ns) {
+  MapExportConfig config;
+  XmlRpc::XmlRpcValue tree;
+  if (nh.getParam(ns + "/map_export", tree)) {
+    std::vector<std::string> unknown;
+    configFromJson(xmlRpcToJson(tree), "ROS parameter " + ns + "/map_export", &config, &unknown);
+  }
+  config.validate();
+  return config;
+}
+
+}  // namespace
+
+BackendNode::BackendNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
+  const std::string config_ns = pnh.param<std::string>("config_ns", "/tacs");
+  config_ = loadPipelineConfigFromRos(nh, config_ns);
+  map_config_ = loadMapExportConfig(nh, config_ns);
+  output_dir_ = pnh.param<std::string>("output_dir", "");
+  if (output_dir_.empty()) output_dir_ = defaultOutputDir();
+  save_on_shutdown_ = pnh.param("save_on_shutdown", true);
+  BackendSessionOptions options;
+  options.room_match_distance_m = pnh.param("room_match_distance_m", 1.0);
+  session_ = std::make_unique<BackendSession>(config_, options);
+  if (pnh.param("recover", false)) {
+    try {
+      const size_t n = session_->recover(output_dir_);
+      ROS_INFO_STREAM("Recovered " << n << " keyframes from " << output_dir_);
+    } catch (const std::exception& e) {
+      ROS_WARN_STREAM("Nothing recovered: " << e.what());
+    }
+  }
+
+  graph_pub_ = nh.advertise<tacs_graphs::SceneGraph>("/tacs/scene_graph", 1, /*latch=*/true);
+  marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("/tacs/markers", 1, /*latch=*/true);
+  map_pub_ = nh.advertise<sensor_msgs::PointCloud2>("/tacs/map_points", 1, /*latch=*/true);
+  const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
+  keyframe_sub_ = nh.subscribe("/tacs/keyframe", 1000, &BackendNode::keyframeCallback, this, hints);
+  walls_sub_ =
+      nh.subscribe("/tacs/wall_observations", 1000, &BackendNode::wallsCallback, this, hints);
+  rooms_sub_ =
+      nh.subscribe("/tacs/room_observations", 100, &BackendNode::roomsCallback, this, hints);
+  loop_sub_ = nh.subscribe("/tacs/loop_closures", 100, &BackendNode::loopCallback, this, hints);
+  save_srv_ = pnh.advertiseService("save", &BackendNode::saveService, this);
+  tf_timer_ = nh.createTimer(ros::Duration(1.0 / pnh.param("tf_rate_hz", 20.0)),
+                             &BackendNode::publishTf, this);
+  map_timer_ = nh.createTimer(ros::Duration(pnh.param("map_publish_period_s", 5.0)),
+                              &BackendNode::publishMap, this);
+  if (session_->keyframeCount() > 0) update();
+  ROS_INFO_STREAM("Backend ready; products go to " << output_dir_);
+}
+
+void BackendNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg) {
+  const KeyframeInput kf = fromKeyframeMsg(*msg);
+  if (!kf.ok) {
+    warnings_.warn("keyframe", WarnOnce::reasonKey(kf.error), kf.error + ", skipped");
+    return;
+  }
+  const auto outcome =
+      session_->addKeyframe(kf.id, kf.stamp, kf.T_odom_base, kf.information, kf.cloud);
+  if (outcome == BackendSession::Outcome::kDuplicate) {
+    warnings_.warn("keyframe", "keyframe id already in the graph, skipped");
+    return;
+  }
+  latest_stamp_ = std::max(latest_stamp_, kf.stamp);
+  map_dirty_ = true;
+  update();
+}
+
+void BackendNode::wallsCallback(const tacs_graphs::WallObservations::ConstPtr& msg) {
+  std::vector<WallSegment> walls;
+  walls.reserve(msg->walls.size());
+  for (const auto& w : msg->walls) {
+    const WallSegment s = fromWallObservationMsg(w);
+    if (!s.normal.allFinite() || !std::isfinite(s.d) || s.normal.norm() < 0.5) {
+      warnings_.warn("wall observations", "non-finite or zero plane, observation skipped");
+      continue;
+    }
+    walls.push_back(s);
+  }
+  const auto outcome = session_->addWalls(msg->keyframe_id, walls);
+  if (outcome == BackendSession::Outcome::kDropped) {
+    warnings_.warn("wall observations", "walls of a keyframe that never arrived, dropped");
+  } else if (outcome == BackendSession::Outcome::kAdded && !walls.empty()) {
+    update();
+  }
+}
+
+void BackendNode::roomsCallback(const tacs_graphs::RoomObservations::ConstPtr& msg) {
+  std::vector<RoomNode> rooms;
+  for (const auto& r : msg->rooms) rooms.push_back(fromRoomObservationMsg(r));
+  session_->addRooms(rooms);
+  update();
+}
+
+void BackendNode::loopCallback(const tacs_graphs::LoopClosure::ConstPtr& msg) {
+  const LoopEdge edge = fromLoopClosureMsg(*msg);
+  const Matrix6d information = fromMatrixArray(msg->information);
+  if (!edge.position.allFinite() || !information.allFinite()) {
+    warnings_.warn("loop closure", "non-finite relative pose or information, skipped");
+    return;
+  }
+  if (session_->addLoop(edge, information) == BackendSession::Outcome::kAdded) update();
+}
+
+void BackendNode::update() {
+  session_->optimizeIfDue();
+  const SceneGraph graph = session_->sceneGraph();
+  const std::string& map = config_.frames.map_frame;
+  graph_pub_.publish(toSceneGraphMsg(graph, session_->wallObservationCounts(), map, latest_stamp_));
+  marker_pub_.publish(sceneGraphMarkers(graph, map, latest_stamp_));
+}
+
+void BackendNode::publishTf(const ros::TimerEvent&) {
+  // Stamped slightly ahead, as usual for map -> odom, so that lookups at the newest odometry
+  // time succeed between two broadcasts.
+  const double stamp = (ros::Time::now() + ros::Duration(0.1)).toSec();
+  // A paused (simulated) clock fires the timer at one time again: tf2 would reject the repeat.
+  if (stamp <= last_tf_stamp_) return;
+  last_tf_stamp_ = stamp;
+  tf_broadcaster_.sendTransform(toTransformMsg(session_->mapToOdom(), config_.frames.map_frame,
+                                               config_.frames.odom_frame, stamp));
+}
+
+void BackendNode::publishMap(const ros::TimerEvent&) {
+  if (!map_dirty_ || map_pub_.getNumSubscribers() == 0) return;
+  map_dirty_ = false;
+  map_pub_.publish(toRosCloud(session_->mapCloud(map_config_.cloud_voxel_m),
+                              config_.frames.map_frame, latest_stamp_));
+}
+
+bool BackendNode::save(std::string* message) {
+  try {
+    session_->save(output_dir_, map_config_);
+    *message =
+        "saved " + std::to_string(session_->keyframeCount()) + " keyframes to " + output_dir_;
+    ROS_INFO_STREAM(*message);
+    return true;
+  } catch (const std::exception& e) {
+    *message = std::string("save failed: ") + e.what();
+    ROS_ERROR_STREAM(*message);
+    return false;
+  }
+}
+
+bool BackendNode::saveService(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  res.success = save(&res.message);
+  return true;
+}
+
+void BackendNode::shutdown() {
+  if (!save_on_shutdown_ || session_->keyframeCount() == 0) return;
+  session_->optimize();
+  std::string message;
+  save(&message);
+}
+
+}  // namespace tacs

@@ -1,0 +1,272 @@
+#include "tacs_graphs/ros/backend_session.h"
+
+#include <pcl/io/pcd_io.h>
+
+#include <algorithm>
+#include <fstream>
+#include <stdexcept>
+
+#include "tacs_graphs/common/file_io.h"
+
+namespace tacs {
+namespace {
+
+nlohmann::json poseToJson(const Pose3& T) {
+  const Eigen::Quaterniond q(T.rotation());
+  const Eigen::Vector3d t = T.translation();
+  return {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()};
+}
+
+Pose3 poseFromJson(const nlohmann::json& j) {
+  const std::vector<double> v = j.get<std::vector<double>>();
+  if (v.size() != 7) throw std::runtime_error("pose needs 7 numbers");
+  Pose3 T = Pose3::Identity();
+  T.translation() << v[0], v[1], v[2];
+  T.linear() = Eigen::Quaterniond(v[6], v[3], v[4], v[5]).normalized().toRotationMatrix();
+  return T;
+}
+
+nlohmann::json matrixToJson(const Eigen::Matrix<double, 6, 6>& m) {
+  std::vector<double> v(36);
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c) v[6 * r + c] = m(r, c);
+  return v;
+}
+
+Eigen::Matrix<double, 6, 6> matrixFromJson(const nlohmann::json& j) {
+  const std::vector<double> v = j.get<std::vector<double>>();
+  if (v.size() != 36) throw std::runtime_error("information needs 36 numbers");
+  Eigen::Matrix<double, 6, 6> m;
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c) m(r, c) = v[6 * r + c];
+  return m;
+}
+
+nlohmann::json wallToJson(const WallSegment& w) {
+  return {{"normal", {w.normal.x(), w.normal.y(), w.normal.z()}},
+          {"d", w.d},
+          {"inliers", w.inliers},
+          {"endpoints",
+           {{w.endpoints[0].x(), w.endpoints[0].y()}, {w.endpoints[1].x(), w.endpoints[1].y()}}},
+          {"z_range", {w.z_min, w.z_max}}};
+}
+
+WallSegment wallFromJson(const nlohmann::json& j) {
+  WallSegment w;
+  const auto n = j.at("normal").get<std::vector<double>>();
+  w.normal = Eigen::Vector3d(n.at(0), n.at(1), n.at(2));
+  w.d = j.at("d").get<double>();
+  w.inliers = j.at("inliers").get<uint32_t>();
+  for (int i = 0; i < 2; ++i) {
+    const auto e = j.at("endpoints").at(i).get<std::vector<double>>();
+    w.endpoints[i] = Eigen::Vector2d(e.at(0), e.at(1));
+  }
+  w.z_min = j.at("z_range").at(0).get<double>();
+  w.z_max = j.at("z_range").at(1).get<double>();
+  return w;
+}
+
+}  // namespace
+
+BackendSession::BackendSession(const PipelineConfig& config, const BackendSessionOptions& options)
+    : config_(config), options_(options), backend_(config.backend, config.walls.association) {}
+
+BackendSession::Outcome BackendSession::addKeyframe(uint32_t id, double stamp,
+                                                    const Pose3& T_odom_base,
+                                                    const Matrix6d& information,
+                                                    const PointCloud::ConstPtr& cloud) {
+  if (backend_.hasKeyframe(id)) return Outcome::kDuplicate;
+  backend_.addKeyframe(id, stamp, T_odom_base, information);
+  if (cloud) clouds_[id] = cloud;
+  newest_keyframe_ = std::max(newest_keyframe_, id);
+  journal_keyframes_.push_back({{"id", id},
+                                {"stamp", stamp},
+                                {"odom_pose", poseToJson(T_odom_base)},
+                                {"information", matrixToJson(information)}});
+  flushPending(id);
+  dropStalePending();
+  return Outcome::kAdded;
+}
+
+BackendSession::Outcome BackendSession::addWalls(uint32_t keyframe_id,
+                                                 const std::vector<WallSegment>& walls) {
+  if (!backend_.hasKeyframe(keyframe_id)) {
+    if (keyframeCount() > 0 && keyframe_id + options_.max_pending_keyframes < newest_keyframe_) {
+      return Outcome::kDropped;  // its keyframe is long gone (lost message or another run)
+    }
+    auto& pending = pending_walls_[keyframe_id];
+    pending.insert(pending.end(), walls.begin(), walls.end());
+    return Outcome::kBuffered;
+  }
+  if (walls.empty()) return Outcome::kAdded;
+  backend_.addWallObservations(keyframe_id, walls);
+  nlohmann::json entry = {{"keyframe", keyframe_id}, {"walls", nlohmann::json::array()}};
+  for (const WallSegment& w : walls) entry["walls"].push_back(wallToJson(w));
+  journal_walls_.push_back(entry);
+  return Outcome::kAdded;
+}
+
+BackendSession::Outcome BackendSession::addLoop(const LoopEdge& edge, const Matrix6d& information) {
+  if (!backend_.hasKeyframe(edge.from) || !backend_.hasKeyframe(edge.to)) {
+    pending_loops_.emplace_back(edge, information);
+    return Outcome::kBuffered;
+  }
+  backend_.addLoopClosure(edge.from, edge.to, edge.relativePose(), information, edge.score);
+  journal_loops_.push_back({{"from", edge.from},
+                            {"to", edge.to},
+                            {"relative_pose", poseToJson(edge.relativePose())},
+                            {"information", matrixToJson(information)},
+                            {"score", edge.score}});
+  return Outcome::kAdded;
+}
+
+void BackendSession::flushPending(uint32_t keyframe_id) {
+  const auto walls = pending_walls_.find(keyframe_id);
+  if (walls != pending_walls_.end()) {
+    const std::vector<WallSegment> segments = std::move(walls->second);
+    pending_walls_.erase(walls);
+    addWalls(keyframe_id, segments);
+  }
+  std::vector<std::pair<LoopEdge, Matrix6d>> loops;
+  loops.swap(pending_loops_);
+  for (const auto& [edge, information] : loops) addLoop(edge, information);
+}
+
+void BackendSession::dropStalePending() {
+  while (!pending_walls_.empty() &&
+         pending_walls_.begin()->first + options_.max_pending_keyframes < newest_keyframe_) {
+    pending_walls_.erase(pending_walls_.begin());
+  }
+  if (pending_loops_.size() > options_.max_pending_keyframes) {
+    pending_loops_.erase(pending_loops_.begin());
+  }
+}
+
+size_t BackendSession::pendingCount() const {
+  return pending_walls_.size() + pending_loops_.size();
+}
+
+std::vector<uint32_t> BackendSession::addRooms(const std::vector<RoomNode>& observations) {
+  std::vector<uint32_t> ids;
+  for (const RoomNode& obs : observations) {
+    RoomNode* match = nullptr;
+    double best = options_.room_match_distance_m;
+    for (auto& [id, room] : rooms_) {
+      const double dist = (room.center.head<2>() - obs.center.head<2>()).norm();
+      if (room.kind == obs.kind && dist <= best) {
+        best = dist;
+        match = &room;
+      }
+    }
+    if (!match) {
+      const uint32_t id = next_room_id_++;
+      match = &rooms_[id];
+      match->id = id;
+    }
+    // The newest observation describes the room best (more free space seen, better poses);
+    // keyframes accumulate.
+    std::vector<uint32_t> keyframes = match->keyframe_ids;
+    const uint32_t id = match->id;
+    *match = obs;
+    match->id = id;
+    keyframes.insert(keyframes.end(), obs.keyframe_ids.begin(), obs.keyframe_ids.end());
+    std::sort(keyframes.begin(), keyframes.end());
+    keyframes.erase(std::unique(keyframes.begin(), keyframes.end()), keyframes.end());
+    match->keyframe_ids = keyframes;
+    ids.push_back(id);
+  }
+  return ids;
+}
+
+SceneGraph BackendSession::sceneGraph() const {
+  SceneGraph graph = backend_.sceneGraph();
+  graph.rooms = rooms_;
+  for (const auto& [id, room] : rooms_) {
+    for (const uint32_t kf : room.keyframe_ids) {
+      const auto it = graph.keyframes.find(kf);
+      if (it != graph.keyframes.end()) it->second.room_id = static_cast<int>(id);
+    }
+  }
+  return graph;
+}
+
+std::map<uint32_t, uint32_t> BackendSession::wallObservationCounts() const {
+  std::map<uint32_t, uint32_t> counts;
+  for (const auto& [id, lm] : backend_.wallMap().landmarks()) counts[id] = lm.observations;
+  return counts;
+}
+
+PointCloud BackendSession::mapCloud(double voxel_m) const {
+  PointCloud cloud = buildMapCloud(sceneGraph(), clouds_, voxel_m);
+  if (recovered_map_) cloud += *recovered_map_;
+  return cloud;
+}
+
+nlohmann::json BackendSession::journal() const {
+  SceneGraph only_rooms;
+  only_rooms.rooms = rooms_;
+  return {{"format", "tacs_graphs/backend_journal"},
+          {"version", 1},
+          {"keyframes", journal_keyframes_},
+          {"walls", journal_walls_},
+          {"loops", journal_loops_},
+          {"rooms", only_rooms.toJson().at("rooms")}};
+}
+
+void BackendSession::save(const std::string& dir, const MapExportConfig& map_config) const {
+  ensureDirectory(dir);
+  const SceneGraph graph = sceneGraph();
+  // Fastest first: a shutdown cut short (roslaunch escalates to SIGTERM after its SIGINT
+  // timeout) still leaves the graph, the journal and the cloud; the OctoMap ray casting comes last.
+  graph.save(dir + "/scene_graph.json");
+  writeFileAtomically(dir + "/backend_journal.json", journal().dump());
+  writePcdAtomically(dir + "/map.pcd", mapCloud(map_config.cloud_voxel_m));
+  writeOctomap(dir + "/map.bt", graph, clouds_, map_config);
+}
+
+size_t BackendSession::recover(const std::string& dir) {
+  const std::string path = dir + "/backend_journal.json";
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    std::map<uint32_t, std::vector<WallSegment>> walls;
+    for (const auto& w : j.at("walls")) {
+      auto& list = walls[w.at("keyframe").get<uint32_t>()];
+      for (const auto& s : w.at("walls")) list.push_back(wallFromJson(s));
+    }
+    size_t recovered = 0;
+    for (const auto& k : j.at("keyframes")) {
+      const uint32_t id = k.at("id").get<uint32_t>();
+      if (addKeyframe(id, k.at("stamp").get<double>(), poseFromJson(k.at("odom_pose")),
+                      matrixFromJson(k.at("information")), nullptr) == Outcome::kAdded) {
+        ++recovered;
+      }
+      const auto it = walls.find(id);
+      if (it != walls.end()) addWalls(id, it->second);
+    }
+    for (const auto& l : j.at("loops")) {
+      LoopEdge edge;
+      edge.from = l.at("from").get<uint32_t>();
+      edge.to = l.at("to").get<uint32_t>();
+      const Pose3 T = poseFromJson(l.at("relative_pose"));
+      edge.position = T.translation();
+      edge.orientation = Eigen::Quaterniond(T.rotation());
+      edge.score = l.at("score").get<double>();
+      addLoop(edge, matrixFromJson(l.at("information")));
+    }
+    nlohmann::json rooms_only = SceneGraph().toJson();
+    rooms_only["rooms"] = j.at("rooms");
+    const SceneGraph with_rooms = SceneGraph::fromJson(rooms_only);
+    rooms_ = with_rooms.rooms;
+    for (const auto& [id, room] : rooms_) next_room_id_ = std::max(next_room_id_, id + 1);
+    if (recovered > 0) backend_.optimize();
+    PointCloud::Ptr map(new PointCloud);
+    if (pcl::io::loadPCDFile(dir + "/map.pcd", *map) == 0) recovered_map_ = map;
+    return recovered;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+}
+
+}  // namespace tacs

@@ -1,0 +1,90 @@
+#include "tacs_graphs/ros/external_odometry.h"
+
+#include <cmath>
+#include <limits>
+
+#include "tacs_graphs/common/timing.h"
+#include "tacs_graphs/odometry/preprocess.h"
+
+namespace tacs {
+namespace {
+
+constexpr size_t kMaxBufferedPoses = 2000;  // 20 s of odometry at 100 Hz
+
+double angleDeg(const Pose3& T) { return Eigen::AngleAxisd(T.rotation()).angle() * 180.0 / M_PI; }
+
+}  // namespace
+
+ExternalOdometry::ExternalOdometry(const OdometryConfig& config, double sigma_xyz_m,
+                                   double sigma_rot_deg)
+    : config_(config) {
+  const double sr = sigma_rot_deg * M_PI / 180.0;
+  information_.setZero();
+  information_.diagonal() << Eigen::Vector3d::Constant(1.0 / (sigma_xyz_m * sigma_xyz_m)),
+      Eigen::Vector3d::Constant(1.0 / (sr * sr));
+}
+
+void ExternalOdometry::addPose(double stamp, const Pose3& T_odom_base) {
+  if (!std::isfinite(stamp) || (!poses_.empty() && stamp <= poses_.back().stamp)) return;
+  if (!T_odom_base.matrix().allFinite()) return;
+  poses_.push_back({stamp, T_odom_base});
+  while (poses_.size() > kMaxBufferedPoses) poses_.pop_front();
+}
+
+double ExternalOdometry::latestStamp() const {
+  return poses_.empty() ? -std::numeric_limits<double>::infinity() : poses_.back().stamp;
+}
+
+std::optional<Pose3> ExternalOdometry::poseAt(double stamp) const {
+  if (poses_.empty() || stamp < poses_.front().stamp || stamp > poses_.back().stamp) {
+    return std::nullopt;
+  }
+  size_t i = 1;
+  while (i < poses_.size() && poses_[i].stamp < stamp) ++i;
+  if (i == poses_.size()) return poses_.back().pose;  // stamp == newest
+  const StampedPose& a = poses_[i - 1];
+  const StampedPose& b = poses_[i];
+  if (b.stamp - a.stamp > config_.max_time_gap_s) return std::nullopt;
+  const double s = (stamp - a.stamp) / (b.stamp - a.stamp);
+  const Eigen::Quaterniond qa(a.pose.rotation()), qb(b.pose.rotation());
+  Pose3 T = Pose3::Identity();
+  T.linear() = qa.slerp(s, qb).toRotationMatrix();
+  T.translation() = (1.0 - s) * a.pose.translation() + s * b.pose.translation();
+  return T;
+}
+
+OdometryResult ExternalOdometry::process(double stamp, const PointCloud& scan_in_base) {
+  Stopwatch watch;
+  OdometryResult result;
+  result.stamp = stamp;
+  auto finish = [&](const std::string& error) {
+    result.ok = error.empty();
+    result.error = error;
+    result.time_ms = watch.elapsedMs();
+    return result;
+  };
+  if (!std::isfinite(stamp)) return finish("non-finite stamp");
+  if (stamp <= last_stamp_) return finish("scan stamp is not after the previous scan's");
+  const std::optional<Pose3> pose = poseAt(stamp);
+  if (!pose) return finish("no external odometry pose at the scan's time");
+  const PointCloud::Ptr cloud(
+      new PointCloud(preprocess(scan_in_base, config_.preprocess, &result.preprocess)));
+  if (cloud->size() < static_cast<size_t>(config_.min_scan_points)) {
+    return finish("too few points after preprocessing (" + std::to_string(cloud->size()) + ")");
+  }
+  last_stamp_ = stamp;
+  result.T_odom_base = *pose;
+  const Pose3 motion = last_keyframe_pose_.inverse() * *pose;
+  if (!has_keyframe_ || motion.translation().norm() >= config_.keyframe_distance_m ||
+      angleDeg(motion) >= config_.keyframe_angle_deg) {
+    result.is_keyframe = true;
+    result.keyframe_id = next_keyframe_id_++;
+    result.keyframe_cloud = cloud;
+    if (has_keyframe_) result.information = information_;
+    has_keyframe_ = true;
+    last_keyframe_pose_ = *pose;
+  }
+  return finish("");
+}
+
+}  // namespace tacs

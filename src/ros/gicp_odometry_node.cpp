@@ -1,0 +1,163 @@
+#include "tacs_graphs/ros/gicp_odometry_node.h"
+
+#include <pcl/common/transforms.h>
+#include <tf2_eigen/tf2_eigen.h>
+
+#include <cmath>
+
+#include "tacs_graphs/odometry/preprocess.h"
+#include "tacs_graphs/ros/cloud_conversion.h"
+#include "tacs_graphs/ros/graph_messages.h"
+#include "tacs_graphs/ros/message_conversion.h"
+#include "tacs_graphs/ros/params.h"
+
+namespace tacs {
+namespace {
+
+constexpr size_t kMaxScansWaitingForOdometry = 20;
+
+bool sameFrame(const std::string& a, const std::string& b) {
+  auto strip = [](const std::string& s) { return s.rfind('/', 0) == 0 ? s.substr(1) : s; };
+  return strip(a) == strip(b);
+}
+
+}  // namespace
+
+GicpOdometryNode::GicpOdometryNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
+    : tf_listener_(tf_buffer_) {
+  const std::string config_ns = pnh.param<std::string>("config_ns", "/tacs");
+  config_ = loadPipelineConfigFromRos(nh, config_ns);
+  publish_tf_ = pnh.param("publish_tf", true);
+  keyframe_cloud_voxel_m_ = pnh.param("keyframe_cloud_voxel_m", 0.1);
+  const std::string points_topic = pnh.param<std::string>("points_topic", "/velodyne_points");
+  const std::string external_topic = pnh.param<std::string>("external_odom_topic", "");
+
+  odom_pub_ = nh.advertise<nav_msgs::Odometry>("/tacs/odom", 10);
+  keyframe_pub_ = nh.advertise<tacs_graphs::Keyframe>("/tacs/keyframe", 100);
+  if (external_topic.empty()) {
+    gicp_ = std::make_unique<LidarOdometry>(config_.odometry);
+    ROS_INFO_STREAM("GICP odometry on " << nh.resolveName(points_topic));
+  } else {
+    external_ = std::make_unique<ExternalOdometry>(config_.odometry,
+                                                   pnh.param("external_odom_sigma_xyz_m", 0.05),
+                                                   pnh.param("external_odom_sigma_rot_deg", 1.0));
+    external_sub_ = nh.subscribe(external_topic, 200, &GicpOdometryNode::externalOdomCallback, this,
+                                 ros::TransportHints().tcpNoDelay());
+    ROS_INFO_STREAM("External odometry " << nh.resolveName(external_topic) << " with clouds on "
+                                         << nh.resolveName(points_topic));
+  }
+  cloud_sub_ = nh.subscribe(points_topic, 5, &GicpOdometryNode::cloudCallback, this,
+                            ros::TransportHints().tcpNoDelay());
+}
+
+Pose3 GicpOdometryNode::sensorExtrinsic(const std::string& sensor_frame) {
+  const std::string& base = config_.frames.base_frame;
+  const auto cached = extrinsics_.find(sensor_frame);
+  // A frame on the parameter fallback switches to TF as soon as TF knows it (a late /tf_static);
+  // canTransform without a wait keeps that check cheap for rigs that never publish it.
+  const bool from_parameter = fallback_frames_.count(sensor_frame) > 0;
+  if (cached != extrinsics_.end() &&
+      (!from_parameter || !tf_buffer_.canTransform(base, sensor_frame, ros::Time(0)))) {
+    return cached->second;
+  }
+  if (sameFrame(sensor_frame, base)) return extrinsics_[sensor_frame] = Pose3::Identity();
+  try {
+    // The extrinsic is static: the latest value is the value. The first lookup waits briefly
+    // for the /tf_static of a bag that has just started.
+    const auto t = tf_buffer_.lookupTransform(base, sensor_frame, ros::Time(0),
+                                              ros::Duration(from_parameter ? 0.0 : 0.5));
+    const Pose3 T = tf2::transformToEigen(t);
+    ROS_INFO_STREAM("Sensor extrinsic " << base << " -> " << sensor_frame << " from TF: xyz "
+                                        << T.translation().transpose());
+    fallback_frames_.erase(sensor_frame);
+    return extrinsics_[sensor_frame] = T;
+  } catch (const tf2::TransformException& e) {
+    const Pose3 T = config_.frames.baseToSensor();
+    ROS_WARN_STREAM("No TF " << base << " -> " << sensor_frame << " (" << e.what()
+                             << "); using frames.base_to_sensor, xyz "
+                             << T.translation().transpose());
+    fallback_frames_.insert(sensor_frame);
+    return extrinsics_[sensor_frame] = T;
+  }
+}
+
+void GicpOdometryNode::externalOdomCallback(const nav_msgs::Odometry::ConstPtr& msg) {
+  const Pose3 T = fromPoseMsg(msg->pose.pose);
+  if (!T.matrix().allFinite()) {
+    warnings_.warn("external odometry", "non-finite pose");
+    return;
+  }
+  external_->addPose(msg->header.stamp.toSec(), T);
+  // Scans that came before their odometry are processed as soon as it covers them.
+  while (!waiting_for_odometry_.empty() &&
+         waiting_for_odometry_.front()->header.stamp.toSec() <= external_->latestStamp()) {
+    const auto cloud = waiting_for_odometry_.front();
+    waiting_for_odometry_.pop_front();
+    processCloud(cloud);
+  }
+}
+
+void GicpOdometryNode::cloudCallback(const sensor_msgs::PointCloud2::ConstPtr& msg) {
+  if (external_ && msg->header.stamp.toSec() > external_->latestStamp()) {
+    waiting_for_odometry_.push_back(msg);
+    if (waiting_for_odometry_.size() > kMaxScansWaitingForOdometry) {
+      waiting_for_odometry_.pop_front();
+      warnings_.warn("cloud", "no external odometry for the scan's time, scan dropped");
+    }
+    return;
+  }
+  processCloud(msg);
+}
+
+void GicpOdometryNode::processCloud(const sensor_msgs::PointCloud2::ConstPtr& msg) {
+  const double stamp = msg->header.stamp.toSec();
+  if (last_stamp_ && stamp <= *last_stamp_) {
+    warnings_.warn("cloud", "time jump back",
+                   "time jump back: stamp " + std::to_string(stamp) + " is not after " +
+                       std::to_string(*last_stamp_) + ", scan skipped");
+    return;
+  }
+  PointCloud scan;
+  const CloudConversionResult conv = fromRosCloud(*msg, &scan);
+  if (!conv.ok) {
+    warnings_.warn("cloud", WarnOnce::reasonKey(conv.error), conv.error + ", scan skipped");
+    return;
+  }
+  const std::string sensor_frame =
+      config_.frames.sensor_frame.empty() ? msg->header.frame_id : config_.frames.sensor_frame;
+  const Pose3 T_base_sensor = sensorExtrinsic(sensor_frame);
+  PointCloud scan_in_base;
+  pcl::transformPointCloud(scan, scan_in_base, T_base_sensor.matrix().cast<float>());
+
+  const OdometryResult result =
+      gicp_ ? gicp_->process(stamp, scan_in_base) : external_->process(stamp, scan_in_base);
+  if (!result.ok) {
+    warnings_.warn("odometry", WarnOnce::reasonKey(result.error), result.error + ", scan skipped");
+    return;
+  }
+  last_stamp_ = stamp;
+  ++scans_processed_;
+  publish(result, scan_in_base);
+}
+
+void GicpOdometryNode::publish(const OdometryResult& result, const PointCloud& scan_in_base) {
+  const FramesConfig& f = config_.frames;
+  odom_pub_.publish(toOdometryMsg(result.T_odom_base, f.odom_frame, f.base_frame, result.stamp));
+  if (publish_tf_) {
+    tf_broadcaster_.sendTransform(
+        toTransformMsg(result.T_odom_base, f.odom_frame, f.base_frame, result.stamp));
+  }
+  if (!result.is_keyframe || !result.keyframe_cloud) return;
+  PointCloud cloud;
+  if (keyframe_cloud_voxel_m_ > 0.0) {
+    PreprocessConfig fine = config_.odometry.preprocess;
+    fine.voxel_size_m = keyframe_cloud_voxel_m_;
+    cloud = preprocess(scan_in_base, fine);
+  } else {
+    cloud = *result.keyframe_cloud;
+  }
+  keyframe_pub_.publish(toKeyframeMsg(result.keyframe_id, result.stamp, result.T_odom_base,
+                                      result.information, cloud, f.odom_frame, f.base_frame));
+}
+
+}  // namespace tacs

@@ -1,0 +1,37 @@
+#include "tacs_graphs/ros/wall_extraction_node.h"
+
+#include <tacs_graphs/WallObservations.h>
+
+#include "tacs_graphs/ros/graph_messages.h"
+#include "tacs_graphs/ros/keyframe_input.h"
+#include "tacs_graphs/ros/params.h"
+
+namespace tacs {
+
+WallExtractionNode::WallExtractionNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
+    : config_(loadPipelineConfigFromRos(nh, pnh.param<std::string>("config_ns", "/tacs"))),
+      extractor_(config_.walls.extraction) {
+  walls_pub_ = nh.advertise<tacs_graphs::WallObservations>("/tacs/wall_observations", 100);
+  keyframe_sub_ = nh.subscribe("/tacs/keyframe", 1000, &WallExtractionNode::keyframeCallback, this,
+                               ros::TransportHints().tcpNoDelay());
+}
+
+void WallExtractionNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg) {
+  const KeyframeInput kf = fromKeyframeMsg(*msg);
+  if (!kf.ok) {
+    warnings_.warn("keyframe", WarnOnce::reasonKey(kf.error), kf.error + ", skipped");
+    return;
+  }
+  const WallExtractionResult result = extractor_.extract(*kf.cloud);
+  ++processed_;
+  tacs_graphs::WallObservations out;
+  out.header.stamp = msg->header.stamp;
+  out.header.frame_id = config_.frames.base_frame;
+  out.keyframe_id = kf.id;
+  out.walls.reserve(result.walls.size());
+  for (const WallSegment& w : result.walls) out.walls.push_back(toWallObservationMsg(w));
+  // Published even when empty: the backend then knows this keyframe's walls are complete.
+  walls_pub_.publish(out);
+}
+
+}  // namespace tacs

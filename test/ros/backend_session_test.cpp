@@ -1,0 +1,147 @@
+#include "tacs_graphs/ros/backend_session.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace tacs {
+namespace {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+// A wall 2 m ahead of the base (x = 2 in the base frame), facing the robot.
+std::vector<WallSegment> wallAhead() {
+  WallSegment w;
+  w.normal = Eigen::Vector3d(-1.0, 0.0, 0.0);
+  w.d = 2.0;
+  w.inliers = 200;
+  w.endpoints[0] = {2.0, -1.0};
+  w.endpoints[1] = {2.0, 1.0};
+  w.z_min = -0.5;
+  w.z_max = 2.0;
+  return {w};
+}
+
+PointCloud::Ptr smallCloud() {
+  PointCloud::Ptr cloud(new PointCloud);
+  for (int i = 0; i < 20; ++i) cloud->push_back(pcl::PointXYZI(2.0f, 0.1f * i, 0.5f, 1.0f));
+  return cloud;
+}
+
+Matrix6d information() { return Matrix6d::Identity() * 1e4; }
+
+TEST(BackendSession, WallsBeforeTheirKeyframeAreBuffered) {
+  BackendSession session{PipelineConfig(), BackendSessionOptions()};
+  EXPECT_EQ(session.addWalls(0, wallAhead()), BackendSession::Outcome::kBuffered);
+  EXPECT_EQ(session.pendingCount(), 1u);
+  EXPECT_EQ(session.addKeyframe(0, 1.0, Pose3::Identity(), Matrix6d::Zero(), smallCloud()),
+            BackendSession::Outcome::kAdded);
+  EXPECT_EQ(session.pendingCount(), 0u);
+  EXPECT_EQ(session.sceneGraph().walls.size(), 1u);
+  // Walls after their keyframe go straight in.
+  EXPECT_EQ(
+      session.addKeyframe(1, 2.0, poseFromXyzRpy(0.5, 0, 0, 0, 0, 0), information(), smallCloud()),
+      BackendSession::Outcome::kAdded);
+  std::vector<WallSegment> nearer = wallAhead();
+  nearer[0].d = 1.5;
+  for (auto& e : nearer[0].endpoints) e.x() = 1.5;
+  EXPECT_EQ(session.addWalls(1, nearer), BackendSession::Outcome::kAdded);
+  const SceneGraph g = session.sceneGraph();
+  ASSERT_EQ(g.walls.size(), 1u);  // the same wall seen twice
+  EXPECT_EQ(session.wallObservationCounts().begin()->second, 2u);
+  EXPECT_EQ(session.addKeyframe(1, 2.0, Pose3::Identity(), information(), nullptr),
+            BackendSession::Outcome::kDuplicate);
+}
+
+TEST(BackendSession, LoopsWaitForBothKeyframes) {
+  BackendSession session{PipelineConfig(), BackendSessionOptions()};
+  session.addKeyframe(0, 1.0, Pose3::Identity(), Matrix6d::Zero(), nullptr);
+  LoopEdge loop;
+  loop.from = 0;
+  loop.to = 1;
+  loop.position = Eigen::Vector3d(1.0, 0.0, 0.0);
+  EXPECT_EQ(session.addLoop(loop, information()), BackendSession::Outcome::kBuffered);
+  session.addKeyframe(1, 2.0, poseFromXyzRpy(1, 0, 0, 0, 0, 0), information(), nullptr);
+  EXPECT_EQ(session.pendingCount(), 0u);
+  EXPECT_EQ(session.sceneGraph().loops.size(), 1u);
+}
+
+TEST(BackendSession, RoomObservationsUpdateTheNearbyRoom) {
+  BackendSession session{PipelineConfig(), BackendSessionOptions()};
+  session.addKeyframe(0, 1.0, Pose3::Identity(), Matrix6d::Zero(), nullptr);
+  session.addKeyframe(1, 2.0, poseFromXyzRpy(1, 0, 0, 0, 0, 0), information(), nullptr);
+  RoomNode a;
+  a.center = Eigen::Vector3d(2.0, 2.0, 0.0);
+  a.keyframe_ids = {0};
+  RoomNode corridor = a;
+  corridor.kind = RoomKind::kCorridor;
+  const auto first = session.addRooms({a, corridor});
+  ASSERT_EQ(first.size(), 2u);
+  EXPECT_NE(first[0], first[1]);  // same place, other kind: another node
+  RoomNode moved = a;
+  moved.center.x() += 0.3;
+  moved.keyframe_ids = {1};
+  EXPECT_EQ(session.addRooms({moved})[0], first[0]);
+  RoomNode far = a;
+  far.center.x() += 5.0;
+  EXPECT_NE(session.addRooms({far})[0], first[0]);
+  const SceneGraph g = session.sceneGraph();
+  EXPECT_EQ(g.rooms.size(), 3u);
+  EXPECT_EQ(g.rooms.at(first[0]).keyframe_ids, (std::vector<uint32_t>{0, 1}));
+  EXPECT_NEAR(g.rooms.at(first[0]).center.x(), 2.3, 1e-12);
+  EXPECT_EQ(g.keyframes.at(1).room_id, static_cast<int>(first[0]));
+}
+
+TEST(BackendSession, SaveWritesProductsAndRecoverRestoresTheGraph) {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / "tacs_backend_session_test").string();
+  std::filesystem::remove_all(dir);
+  PipelineConfig config;
+  MapExportConfig map_config;
+  SceneGraph before;
+  {
+    BackendSession session(config, BackendSessionOptions());
+    for (uint32_t id = 0; id < 4; ++id) {
+      session.addKeyframe(id, 1.0 + id, poseFromXyzRpy(0.5 * id, 0, 0, 0, 0, 0),
+                          id == 0 ? Matrix6d::Zero() : information(), smallCloud());
+      session.addWalls(id, wallAhead());
+    }
+    RoomNode room;
+    room.center = Eigen::Vector3d(1.0, 0.0, 0.0);
+    room.keyframe_ids = {2, 3};
+    session.addRooms({room});
+    session.optimize();
+    session.save(dir, map_config);
+    before = session.sceneGraph();
+  }
+  for (const char* name : {"scene_graph.json", "map.pcd", "map.bt", "backend_journal.json"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir + "/" + name)) << name;
+  }
+  BackendSession restarted{config, BackendSessionOptions()};
+  EXPECT_EQ(restarted.recover(dir), 4u);
+  const SceneGraph after = restarted.sceneGraph();
+  ASSERT_EQ(after.keyframes.size(), 4u);
+  EXPECT_TRUE(after.keyframes.at(3).pose().isApprox(before.keyframes.at(3).pose(), 1e-6));
+  EXPECT_EQ(after.walls.size(), before.walls.size());
+  EXPECT_EQ(after.rooms.size(), 1u);
+  EXPECT_EQ(after.keyframes.at(3).room_id, 0);
+  // The saved map is part of the recovered map, and new keyframes continue the graph.
+  EXPECT_GT(restarted.mapCloud(0.1).size(), 0u);
+  EXPECT_EQ(
+      restarted.addKeyframe(4, 5.0, poseFromXyzRpy(2.0, 0, 0, 0, 0, 0), information(), nullptr),
+      BackendSession::Outcome::kAdded);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(BackendSession, RecoverFromMissingFolderThrowsNamingTheFile) {
+  BackendSession session{PipelineConfig(), BackendSessionOptions()};
+  try {
+    session.recover("/nonexistent/tacs");
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("backend_journal.json"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace tacs
