@@ -48,8 +48,10 @@ void writeOctomap(const std::string& path, const SceneGraph& graph, const Keyfra
                      static_cast<float>(q.z()));
     }
     const Eigen::Vector3d o = pose.translation();
+    // discretize: rays to end points in the same leaf are cast once, which makes the map of a
+    // long run several times faster to build.
     tree.insertPointCloud(scan, octomap::point3d(o.x(), o.y(), o.z()), config.octomap_max_range_m,
-                          /*lazy_eval=*/true);
+                          /*lazy_eval=*/true, /*discretize=*/true);
   }
   tree.updateInnerOccupancy();
   const std::string tmp = path + ".tmp";
