@@ -2,6 +2,7 @@
 // (paper Table III metrics N_loop, PR_loop, t_LD).
 //
 //   bench_loop_closure [--world WORLD.json ...] [--spacing M] [--drift SCALE] [--seed N]
+//                      [--verbose]   (one line per CoSG-LCD detection)
 //
 // For each world the simulator renders a VLP-16 keyframe every `spacing` metres (0.5) of the
 // ground-truth path; the keyframe clouds are range-cropped and 0.2 m voxel-downsampled as the
@@ -153,6 +154,9 @@ struct Metrics {
 };
 
 void score(const std::vector<Keyframe>& kfs, const tacs::LoopDetection& d, Metrics* m) {
+  for (size_t k = 0; k < d.refined.size(); ++k) {
+    std::printf(" | refined %u:%.2f", d.refined[k], d.refined_scores[k]);
+  }
   for (const tacs::LoopClosure& loop : d.loops) {
     const Pose3 truth = kfs[loop.from].truth.inverse() * kfs[loop.to].truth;
     const bool ok = (truth.translation() - loop.T_from_to.translation()).norm() < 0.3 &&
@@ -170,6 +174,36 @@ void finish(const tacs::LoopDetector& detector, Metrics* m) {
   m->total_ms = detector.stats().total_ms;
 }
 
+bool g_verbose = false;
+
+// One line per CoSG detection: what was searched and how each registration scored.
+void printDetection(const tacs::LoopDetector& detector, const std::vector<Keyframe>& kfs,
+                    const Trigger& t, const tacs::LoopDetection& d) {
+  const Keyframe& q = kfs[t.query];
+  std::printf(
+      "  query %u (room %d, %zu room keyframes, est. error %.2f m): partitions %d, "
+      "candidates %zu, coarse scores",
+      q.id, q.room, t.room_keyframes.size(),
+      (q.truth.translation() - q.estimate.translation()).norm(), d.partitions, d.candidates.size());
+  for (size_t k = 0; k < d.registered.size(); ++k) {
+    const Keyframe& c = kfs[d.registered[k]];
+    std::printf(" %u:%.2f(%.1fm, truth %.2f)", c.id, d.coarse_scores[k],
+                (c.truth.translation() - q.truth.translation()).norm(),
+                detector.matchScore(c.id, q.id, c.truth.inverse() * q.truth));
+  }
+  for (size_t k = 0; k < d.refined.size(); ++k) {
+    std::printf(" | refined %u:%.2f", d.refined[k], d.refined_scores[k]);
+  }
+  for (const tacs::LoopClosure& loop : d.loops) {
+    const Pose3 truth = kfs[loop.from].truth.inverse() * kfs[loop.to].truth;
+    std::printf(" -> loop %u-%u %s score %.2f err %.3f m %.2f deg", loop.from, loop.to,
+                tacs::loopPathName(loop.path), loop.score,
+                (truth.translation() - loop.T_from_to.translation()).norm(),
+                rotationDeg(truth, loop.T_from_to));
+  }
+  std::printf("\n");
+}
+
 Metrics runCosg(const std::vector<Keyframe>& kfs, const std::vector<Trigger>& triggers) {
   tacs::LoopDetector detector{tacs::LoopClosureConfig()};
   Metrics m;
@@ -179,7 +213,9 @@ Metrics runCosg(const std::vector<Keyframe>& kfs, const std::vector<Trigger>& tr
     detector.addKeyframe(kfs[k].id, kfs[k].stamp, kfs[k].estimate, kfs[k].cloud);
     m.prepare_ms += prep.elapsedMs();
     for (; next < triggers.size() && triggers[next].query == k; ++next) {
-      score(kfs, detector.detectInRoom(kfs[k].id, triggers[next].room_keyframes), &m);
+      const tacs::LoopDetection d = detector.detectInRoom(kfs[k].id, triggers[next].room_keyframes);
+      if (g_verbose) printDetection(detector, kfs, triggers[next], d);
+      score(kfs, d, &m);
     }
   }
   finish(detector, &m);
@@ -237,11 +273,14 @@ int main(int argc, char** argv) {
       spacing = std::atof(argv[++i]);
     } else if (arg == "--drift" && i + 1 < argc) {
       drift_scale = std::atof(argv[++i]);
+    } else if (arg == "--verbose") {
+      g_verbose = true;
     } else if (arg == "--seed" && i + 1 < argc) {
       seed = std::strtoull(argv[++i], nullptr, 10);
     } else {
       std::fprintf(stderr,
-                   "usage: %s [--world WORLD.json ...] [--spacing M] [--drift SCALE] [--seed N]\n",
+                   "usage: %s [--world WORLD.json ...] [--spacing M] [--drift SCALE] [--seed N] "
+                   "[--verbose]\n",
                    argv[0]);
       return arg == "--help" ? 0 : 2;
     }

@@ -85,8 +85,8 @@ TEST(LoopClosureCosg, LargeInitialErrorClosesThroughTheFinePathOnly) {
     EXPECT_TRUE(coarse.detection.loops.empty());
     ASSERT_EQ(coarse.detection.coarse_scores.size(), 5u);
     for (double score : coarse.detection.coarse_scores) {
-      EXPECT_LT(score, coarse_only.cosg.s_coarse);
-      EXPECT_GE(score, coarse_only.cosg.s_fine);
+      EXPECT_LT(score, coarse_only.cosg.s_coarse) << "coarse score";
+      EXPECT_GE(score, coarse_only.cosg.s_fine) << "coarse score";
     }
 
     LoopDetector detector{LoopClosureConfig()};

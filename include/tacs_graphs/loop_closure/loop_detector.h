@@ -44,10 +44,12 @@ struct LoopClosure {
 
 /// What one detection call did.
 struct LoopDetection {
-  std::vector<LoopClosure> loops;     // accepted loops (CoSG: at most one per searched partition)
-  std::vector<uint32_t> candidates;   // keyframes that passed the room / distance filters
-  std::vector<uint32_t> registered;   // keyframes that were registered against the query
-  std::vector<double> coarse_scores;  // CoSG: match score of each coarse registration, in order
+  std::vector<LoopClosure> loops;      // accepted loops (CoSG: at most one per searched partition)
+  std::vector<uint32_t> candidates;    // keyframes that passed the room / distance filters
+  std::vector<uint32_t> registered;    // keyframes that were registered against the query
+  std::vector<double> coarse_scores;   // CoSG: match score of each coarse registration, in order
+  std::vector<uint32_t> refined;       // CoSG: weak matches refined coarse-to-fine
+  std::vector<double> refined_scores;  // CoSG: their match scores after refinement
   std::vector<int> searched_partitions;  // CoSG: indices of the searched room partitions
   int partitions = 0;                    // CoSG: partitions of the room
   int registrations = 0;                 // GICP runs (a fine refinement counts each stage)

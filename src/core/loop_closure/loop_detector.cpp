@@ -94,19 +94,25 @@ double LoopDetector::matchScore(uint32_t candidate_id, uint32_t query_id,
   const auto& q_points = query.cloud->points();
   const auto& c_points = cand.cloud->points();
   const auto& c_covs = cand.cloud->covariances();
-  size_t matched = 0;
+  size_t overlap = 0, matched = 0;
   for (uint32_t i : query.scored_points) {
     const Eigen::Vector3d p = T_candidate_query * q_points[i];
     double dist_sq = 0.0;
     const int64_t j = cand.cloud->nearest(p, search_sq, &dist_sq);
-    if (j < 0) continue;
+    if (j < 0) continue;  // outside what the candidate saw: neither evidence for nor against
+    ++overlap;
     const Eigen::Vector3d r = p - c_points[j];
     // A match lies on the candidate's local surface; a point of a wall shifted along its own
     // plane still matches, one of a perpendicular wall does not.
     const double d_sq = hasNormal(c_covs[j]) ? squaredPlaneDistance(c_covs[j], r) : dist_sq;
     if (d_sq <= plane_sq) ++matched;
   }
-  return static_cast<double>(matched) / static_cast<double>(query.scored_points.size());
+  // Scored over the overlap, so two views of a room from 5 m apart (each seeing walls the other
+  // does not) score as high as close views when aligned; an alignment that pushes most of the
+  // query out of the candidate's view cannot win by a small overlap.
+  const double scored = static_cast<double>(query.scored_points.size());
+  return static_cast<double>(matched) /
+         std::max(static_cast<double>(overlap), rc.score_min_overlap * scored);
 }
 
 LoopDetector::Registration LoopDetector::registerPair(uint32_t candidate, uint32_t query,
@@ -256,6 +262,8 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
       pose = refined.gicp.T_target_source;
       ++det.registrations;
     }
+    det.refined.push_back(refined.candidate);
+    det.refined_scores.push_back(refined.score);
     if (!best_fine || refined.score > best_fine->score) best_fine = refined;
   }
   if (best_fine && best_fine->score >= cc.s_coarse) {
