@@ -151,12 +151,15 @@ std::vector<Trigger> roomTriggers(const std::vector<Keyframe>& kfs, double trigg
 struct Metrics {
   int loops = 0, true_loops = 0, coarse = 0, fine = 0, detections = 0, registrations = 0;
   double total_ms = 0.0, prepare_ms = 0.0;
+
+  void operator+=(const Metrics& o) {
+    loops += o.loops, true_loops += o.true_loops, coarse += o.coarse, fine += o.fine;
+    detections += o.detections, registrations += o.registrations;
+    total_ms += o.total_ms, prepare_ms += o.prepare_ms;
+  }
 };
 
 void score(const std::vector<Keyframe>& kfs, const tacs::LoopDetection& d, Metrics* m) {
-  for (size_t k = 0; k < d.refined.size(); ++k) {
-    std::printf(" | refined %u:%.2f", d.refined[k], d.refined_scores[k]);
-  }
   for (const tacs::LoopClosure& loop : d.loops) {
     const Pose3 truth = kfs[loop.from].truth.inverse() * kfs[loop.to].truth;
     const bool ok = (truth.translation() - loop.T_from_to.translation()).norm() < 0.3 &&
@@ -299,6 +302,7 @@ int main(int argc, char** argv) {
       "| world | method | N_loop | PR_loop | coarse / fine | t_LD ms | detections | "
       "ms/detection | GICP runs |\n|---|---|---|---|---|---|---|---|---|\n");
   std::vector<std::string> notes;
+  Metrics totals[3];
   for (const std::string& path : worlds) {
     const tacs::sim::World world = tacs::sim::loadWorld(path);
     double render_ms = 0.0;
@@ -309,9 +313,11 @@ int main(int argc, char** argv) {
       max_drift = std::max(max_drift, (kf.truth.translation() - kf.estimate.translation()).norm());
     }
     const Metrics cosg = runCosg(kfs, triggers);
+    const Metrics near = runDistance(kfs, 1.0), far = runDistance(kfs, 5.0);
     printRow(world.name, "CoSG-LCD", cosg);
-    printRow(world.name, "distance d=1 m", runDistance(kfs, 1.0));
-    printRow(world.name, "distance d=5 m", runDistance(kfs, 5.0));
+    printRow(world.name, "distance d=1 m", near);
+    printRow(world.name, "distance d=5 m", far);
+    totals[0] += cosg, totals[1] += near, totals[2] += far;
     char note[256];
     std::snprintf(note, sizeof(note),
                   "%s: %zu keyframes, %zu room triggers, max drift %.2f m, end drift %.2f m / "
@@ -321,6 +327,11 @@ int main(int argc, char** argv) {
                   rotationDeg(kfs.back().truth, kfs.back().estimate),
                   cosg.prepare_ms / std::max<size_t>(1, kfs.size()));
     notes.push_back(note);
+  }
+  if (worlds.size() > 1) {
+    printRow("all", "CoSG-LCD", totals[0]);
+    printRow("all", "distance d=1 m", totals[1]);
+    printRow("all", "distance d=5 m", totals[2]);
   }
   std::printf("\n");
   for (const std::string& n : notes) std::printf("- %s\n", n.c_str());

@@ -107,8 +107,9 @@ class LoopDetector {
     double score = 0.0;
   };
 
-  Registration registerPair(uint32_t candidate, uint32_t query, const Pose3& guess,
-                            double gate_m) const;
+  /// GICP of the query against the candidate from `guess`; scored unless `score` is false.
+  Registration registerPair(uint32_t candidate, uint32_t query, const Pose3& guess, double gate_m,
+                            bool score = true) const;
   LoopClosure makeLoop(const Registration& r, uint32_t query, LoopPath path) const;
   bool isRecent(const Keyframe& candidate, uint32_t candidate_id, const Keyframe& query,
                 uint32_t query_id) const;

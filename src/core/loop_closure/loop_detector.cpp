@@ -116,7 +116,8 @@ double LoopDetector::matchScore(uint32_t candidate_id, uint32_t query_id,
 }
 
 LoopDetector::Registration LoopDetector::registerPair(uint32_t candidate, uint32_t query,
-                                                      const Pose3& guess, double gate_m) const {
+                                                      const Pose3& guess, double gate_m,
+                                                      bool score) const {
   GicpConfig gc;
   gc.k_neighbors = config_.registration.k_neighbors;
   gc.max_iterations = config_.registration.max_iterations;
@@ -128,7 +129,7 @@ LoopDetector::Registration LoopDetector::registerPair(uint32_t candidate, uint32
   Registration r;
   r.candidate = candidate;
   r.gicp = gicp.align(guess);
-  r.score = matchScore(candidate, query, r.gicp.T_target_source);
+  if (score) r.score = matchScore(candidate, query, r.gicp.T_target_source);
   return r;
 }
 
@@ -257,8 +258,10 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
   for (const Registration* w : weak) {
     Pose3 pose = keyframes_.at(w->candidate).T_map_base.inverse() * query.T_map_base;
     Registration refined;
-    for (double gate : cc.fine_correspondence_schedule_m) {
-      refined = registerPair(w->candidate, query_id, pose, gate);
+    const auto& schedule = cc.fine_correspondence_schedule_m;
+    for (size_t stage = 0; stage < schedule.size(); ++stage) {
+      const bool last = stage + 1 == schedule.size();
+      refined = registerPair(w->candidate, query_id, pose, schedule[stage], last);
       pose = refined.gicp.T_target_source;
       ++det.registrations;
     }
