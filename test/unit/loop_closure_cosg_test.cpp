@@ -166,6 +166,19 @@ TEST(LoopClosureCosg, SearchesOnlyTheTwoPartitionsNearestTheQuery) {
   EXPECT_EQ(d.registered.size(), 6u);  // x = 3 .. 8
 }
 
+TEST(LoopClosureCosg, CandidatesFollowUpdatedPoseEstimates) {
+  const test::BoxRoom room;
+  LoopDetector detector{LoopClosureConfig()};
+  const PointCloud cloud = test::keyframeCloud(room, roomPose(5, 3.5, 0), 1);
+  detector.addKeyframe(1, 1.0, roomPose(20.0, 3.0, 0), cloud);  // estimated 16 m away
+  detector.addKeyframe(50, 100.0, roomPose(4.0, 3.0, 0), cloud);
+  EXPECT_TRUE(detector.detectInRoom(50, {1, 50}).registered.empty());
+  // An optimisation moves keyframe 1 next to the query; unknown ids are ignored.
+  detector.updatePoses({{1, roomPose(5.0, 3.0, 0)}, {77, roomPose(0, 0, 0)}});
+  EXPECT_FALSE(detector.hasKeyframe(77));
+  EXPECT_EQ(detector.detectInRoom(50, {1, 50}).registered, (std::vector<uint32_t>{1}));
+}
+
 TEST(LoopClosureCosg, UnknownQueryOrEmptyRoomIsSkipped) {
   LoopDetector detector{LoopClosureConfig()};
   LoopDetection d = detector.detectInRoom(7, {1, 2});
