@@ -314,17 +314,19 @@ int main(int argc, char** argv) {
     }
     const Metrics cosg = runCosg(kfs, triggers);
     const Metrics near = runDistance(kfs, 1.0), far = runDistance(kfs, 5.0);
+    size_t points = 0;
+    for (const Keyframe& kf : kfs) points += kf.cloud.size();
     printRow(world.name, "CoSG-LCD", cosg);
     printRow(world.name, "distance d=1 m", near);
     printRow(world.name, "distance d=5 m", far);
     totals[0] += cosg, totals[1] += near, totals[2] += far;
-    char note[256];
+    char note[400];
     std::snprintf(note, sizeof(note),
                   "%s: %zu keyframes, %zu room triggers, max drift %.2f m, end drift %.2f m / "
-                  "%.1f deg, cloud preparation %.1f ms/keyframe",
+                  "%.1f deg, %zu points/keyframe, cloud preparation %.1f ms/keyframe",
                   world.name.c_str(), kfs.size(), triggers.size(), max_drift,
                   (kfs.back().truth.translation() - kfs.back().estimate.translation()).norm(),
-                  rotationDeg(kfs.back().truth, kfs.back().estimate),
+                  rotationDeg(kfs.back().truth, kfs.back().estimate), points / kfs.size(),
                   cosg.prepare_ms / std::max<size_t>(1, kfs.size()));
     notes.push_back(note);
   }

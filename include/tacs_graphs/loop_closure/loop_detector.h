@@ -5,8 +5,12 @@
 // two partitions of a large room nearest the query. Each is registered with GICP from the
 // current pose estimates; the best by match score is a loop when it reaches S_coarse. When none
 // does (large initial pose error), the weaker matches reaching the relaxed S_fine are refined
-// coarse-to-fine with widening-then-narrowing correspondence gates, and the refined best is a
-// loop when it reaches S_coarse.
+// coarse-to-fine, with correspondence gates shrinking from wide to narrow, and the refined best
+// is a loop when it reaches S_coarse. The match score S is the share of the query's wall-like
+// points, within the overlap with the candidate, that lie on the candidate's surfaces.
+//
+// A loop's information is the GICP Hessian at the result (the unit-less plane covariances of
+// gicp.h, as for the odometry's keyframe information) times registration.information_scale.
 //
 // The distance baseline (hdl_graph_slam / S-Graphs+ style) runs on every keyframe: candidates
 // within a fixed xy distance that lie far enough back along the path, the lowest GICP fitness
