@@ -2,6 +2,7 @@
 // (paper Table III metrics N_loop, PR_loop, t_LD).
 //
 //   bench_loop_closure [--world WORLD.json ...] [--spacing M] [--drift SCALE] [--seed N]
+//                      [--verbose]   (one line per CoSG-LCD detection)
 //
 // For each world the simulator renders a VLP-16 keyframe every `spacing` metres (0.5) of the
 // ground-truth path; the keyframe clouds are range-cropped and 0.2 m voxel-downsampled as the
@@ -150,6 +151,12 @@ std::vector<Trigger> roomTriggers(const std::vector<Keyframe>& kfs, double trigg
 struct Metrics {
   int loops = 0, true_loops = 0, coarse = 0, fine = 0, detections = 0, registrations = 0;
   double total_ms = 0.0, prepare_ms = 0.0;
+
+  void operator+=(const Metrics& o) {
+    loops += o.loops, true_loops += o.true_loops, coarse += o.coarse, fine += o.fine;
+    detections += o.detections, registrations += o.registrations;
+    total_ms += o.total_ms, prepare_ms += o.prepare_ms;
+  }
 };
 
 void score(const std::vector<Keyframe>& kfs, const tacs::LoopDetection& d, Metrics* m) {
@@ -170,6 +177,36 @@ void finish(const tacs::LoopDetector& detector, Metrics* m) {
   m->total_ms = detector.stats().total_ms;
 }
 
+bool g_verbose = false;
+
+// One line per CoSG detection: what was searched and how each registration scored.
+void printDetection(const tacs::LoopDetector& detector, const std::vector<Keyframe>& kfs,
+                    const Trigger& t, const tacs::LoopDetection& d) {
+  const Keyframe& q = kfs[t.query];
+  std::printf(
+      "  query %u (room %d, %zu room keyframes, est. error %.2f m): partitions %d, "
+      "candidates %zu, coarse scores",
+      q.id, q.room, t.room_keyframes.size(),
+      (q.truth.translation() - q.estimate.translation()).norm(), d.partitions, d.candidates.size());
+  for (size_t k = 0; k < d.registered.size(); ++k) {
+    const Keyframe& c = kfs[d.registered[k]];
+    std::printf(" %u:%.2f(%.1fm, truth %.2f)", c.id, d.coarse_scores[k],
+                (c.truth.translation() - q.truth.translation()).norm(),
+                detector.matchScore(c.id, q.id, c.truth.inverse() * q.truth));
+  }
+  for (size_t k = 0; k < d.refined.size(); ++k) {
+    std::printf(" | refined %u:%.2f", d.refined[k], d.refined_scores[k]);
+  }
+  for (const tacs::LoopClosure& loop : d.loops) {
+    const Pose3 truth = kfs[loop.from].truth.inverse() * kfs[loop.to].truth;
+    std::printf(" -> loop %u-%u %s score %.2f err %.3f m %.2f deg", loop.from, loop.to,
+                tacs::loopPathName(loop.path), loop.score,
+                (truth.translation() - loop.T_from_to.translation()).norm(),
+                rotationDeg(truth, loop.T_from_to));
+  }
+  std::printf("\n");
+}
+
 Metrics runCosg(const std::vector<Keyframe>& kfs, const std::vector<Trigger>& triggers) {
   tacs::LoopDetector detector{tacs::LoopClosureConfig()};
   Metrics m;
@@ -179,7 +216,9 @@ Metrics runCosg(const std::vector<Keyframe>& kfs, const std::vector<Trigger>& tr
     detector.addKeyframe(kfs[k].id, kfs[k].stamp, kfs[k].estimate, kfs[k].cloud);
     m.prepare_ms += prep.elapsedMs();
     for (; next < triggers.size() && triggers[next].query == k; ++next) {
-      score(kfs, detector.detectInRoom(kfs[k].id, triggers[next].room_keyframes), &m);
+      const tacs::LoopDetection d = detector.detectInRoom(kfs[k].id, triggers[next].room_keyframes);
+      if (g_verbose) printDetection(detector, kfs, triggers[next], d);
+      score(kfs, d, &m);
     }
   }
   finish(detector, &m);
@@ -237,11 +276,14 @@ int main(int argc, char** argv) {
       spacing = std::atof(argv[++i]);
     } else if (arg == "--drift" && i + 1 < argc) {
       drift_scale = std::atof(argv[++i]);
+    } else if (arg == "--verbose") {
+      g_verbose = true;
     } else if (arg == "--seed" && i + 1 < argc) {
       seed = std::strtoull(argv[++i], nullptr, 10);
     } else {
       std::fprintf(stderr,
-                   "usage: %s [--world WORLD.json ...] [--spacing M] [--drift SCALE] [--seed N]\n",
+                   "usage: %s [--world WORLD.json ...] [--spacing M] [--drift SCALE] [--seed N] "
+                   "[--verbose]\n",
                    argv[0]);
       return arg == "--help" ? 0 : 2;
     }
@@ -260,6 +302,7 @@ int main(int argc, char** argv) {
       "| world | method | N_loop | PR_loop | coarse / fine | t_LD ms | detections | "
       "ms/detection | GICP runs |\n|---|---|---|---|---|---|---|---|---|\n");
   std::vector<std::string> notes;
+  Metrics totals[3];
   for (const std::string& path : worlds) {
     const tacs::sim::World world = tacs::sim::loadWorld(path);
     double render_ms = 0.0;
@@ -270,18 +313,27 @@ int main(int argc, char** argv) {
       max_drift = std::max(max_drift, (kf.truth.translation() - kf.estimate.translation()).norm());
     }
     const Metrics cosg = runCosg(kfs, triggers);
+    const Metrics near = runDistance(kfs, 1.0), far = runDistance(kfs, 5.0);
+    size_t points = 0;
+    for (const Keyframe& kf : kfs) points += kf.cloud.size();
     printRow(world.name, "CoSG-LCD", cosg);
-    printRow(world.name, "distance d=1 m", runDistance(kfs, 1.0));
-    printRow(world.name, "distance d=5 m", runDistance(kfs, 5.0));
-    char note[256];
+    printRow(world.name, "distance d=1 m", near);
+    printRow(world.name, "distance d=5 m", far);
+    totals[0] += cosg, totals[1] += near, totals[2] += far;
+    char note[400];
     std::snprintf(note, sizeof(note),
                   "%s: %zu keyframes, %zu room triggers, max drift %.2f m, end drift %.2f m / "
-                  "%.1f deg, cloud preparation %.1f ms/keyframe",
+                  "%.1f deg, %zu points/keyframe, cloud preparation %.1f ms/keyframe",
                   world.name.c_str(), kfs.size(), triggers.size(), max_drift,
                   (kfs.back().truth.translation() - kfs.back().estimate.translation()).norm(),
-                  rotationDeg(kfs.back().truth, kfs.back().estimate),
+                  rotationDeg(kfs.back().truth, kfs.back().estimate), points / kfs.size(),
                   cosg.prepare_ms / std::max<size_t>(1, kfs.size()));
     notes.push_back(note);
+  }
+  if (worlds.size() > 1) {
+    printRow("all", "CoSG-LCD", totals[0]);
+    printRow("all", "distance d=1 m", totals[1]);
+    printRow("all", "distance d=5 m", totals[2]);
   }
   std::printf("\n");
   for (const std::string& n : notes) std::printf("- %s\n", n.c_str());

@@ -85,8 +85,8 @@ TEST(LoopClosureCosg, LargeInitialErrorClosesThroughTheFinePathOnly) {
     EXPECT_TRUE(coarse.detection.loops.empty());
     ASSERT_EQ(coarse.detection.coarse_scores.size(), 5u);
     for (double score : coarse.detection.coarse_scores) {
-      EXPECT_LT(score, coarse_only.cosg.s_coarse);
-      EXPECT_GE(score, coarse_only.cosg.s_fine);
+      EXPECT_LT(score, coarse_only.cosg.s_coarse) << "coarse score";
+      EXPECT_GE(score, coarse_only.cosg.s_fine) << "coarse score";
     }
 
     LoopDetector detector{LoopClosureConfig()};
@@ -164,6 +164,48 @@ TEST(LoopClosureCosg, SearchesOnlyTheTwoPartitionsNearestTheQuery) {
     EXPECT_LE(id, 8u);
   }
   EXPECT_EQ(d.registered.size(), 6u);  // x = 3 .. 8
+}
+
+TEST(LoopClosureCosg, ALargeRoomGivesTheBestLoopOfEachSearchedPartition) {
+  // Fig. 5(b): with L_part = 3 m the first pass x = 1..9 m makes partitions centred at 2.5, 5.5
+  // and 8 m; a query at x = 5.2 searches the two nearest (5.5 and 2.5) and closes one loop each.
+  const test::BoxRoom room;
+  LoopClosureConfig config;
+  config.cosg.partition_length_m = 3.0;
+  LoopDetector detector(config);
+  std::vector<uint32_t> room_ids;
+  for (uint32_t id = 0; id <= 8; ++id) {
+    test::addRoomKeyframe(&detector, room, id, roomPose(1.0 + id, 3.5, 0),
+                          roomPose(1.0 + id, 3.5, 0));
+    room_ids.push_back(id);
+  }
+  const Pose3 truth_query = roomPose(5.2, 3.3, -20);
+  test::addRoomKeyframe(&detector, room, 100, truth_query, truth_query);
+  const LoopDetection d = detector.detectInRoom(100, room_ids);
+  EXPECT_EQ(d.partitions, 3);
+  EXPECT_EQ(d.searched_partitions, (std::vector<int>{1, 0}));
+  ASSERT_EQ(d.loops.size(), 2u);
+  EXPECT_GE(d.loops[0].from, 3u);  // x = 4..6
+  EXPECT_LE(d.loops[0].from, 5u);
+  EXPECT_LE(d.loops[1].from, 2u);  // x = 1..3
+  for (const LoopClosure& loop : d.loops) {
+    const Pose3 truth = roomPose(1.0 + loop.from, 3.5, 0).inverse() * truth_query;
+    EXPECT_LT(test::translationError(loop.T_from_to, truth), 0.05) << loop.from;
+    EXPECT_LT(test::rotationErrorDeg(loop.T_from_to, truth), 0.5) << loop.from;
+  }
+}
+
+TEST(LoopClosureCosg, CandidatesFollowUpdatedPoseEstimates) {
+  const test::BoxRoom room;
+  LoopDetector detector{LoopClosureConfig()};
+  const PointCloud cloud = test::keyframeCloud(room, roomPose(5, 3.5, 0), 1);
+  detector.addKeyframe(1, 1.0, roomPose(20.0, 3.0, 0), cloud);  // estimated 16 m away
+  detector.addKeyframe(50, 100.0, roomPose(4.0, 3.0, 0), cloud);
+  EXPECT_TRUE(detector.detectInRoom(50, {1, 50}).registered.empty());
+  // An optimisation moves keyframe 1 next to the query; unknown ids are ignored.
+  detector.updatePoses({{1, roomPose(5.0, 3.0, 0)}, {77, roomPose(0, 0, 0)}});
+  EXPECT_FALSE(detector.hasKeyframe(77));
+  EXPECT_EQ(detector.detectInRoom(50, {1, 50}).registered, (std::vector<uint32_t>{1}));
 }
 
 TEST(LoopClosureCosg, UnknownQueryOrEmptyRoomIsSkipped) {

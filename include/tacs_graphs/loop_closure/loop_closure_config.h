@@ -13,12 +13,14 @@ struct LoopRegistrationConfig {
   int k_neighbors = 10;           // points per GICP covariance
   int max_iterations = 30;        // GICP iterations per registration stage
   int num_threads = 2;            // OpenMP threads of GICP; 0 = OpenMP default
-  // Match score (CoSG-LCD's S): share of the query's wall-like points that land on a surface of
-  // the candidate. Horizontal surfaces (floor, ceiling) are left out because they agree under any
-  // planar shift or yaw, so they would inflate the score of a wrong alignment.
-  double score_search_radius_m = 0.5;    // [m] nearest candidate point searched this far
-  double score_plane_distance_m = 0.08;  // [m] ... and the point must lie this close to its plane
+  // Match score (CoSG-LCD's S): share of the query's wall-like points in the overlap with the
+  // candidate that lie on a surface of the candidate. Horizontal surfaces (floor, ceiling) are
+  // left out because they agree under any planar shift or yaw, so they would inflate the score
+  // of a wrong alignment.
+  double score_search_radius_m = 1.0;    // [m] query points farther from the candidate: no overlap
+  double score_plane_distance_m = 0.08;  // [m] a match lies this close to the candidate's plane
   double score_max_normal_z = 0.5;       // |normal z| above this: horizontal, not scored [-]
+  double score_min_overlap = 0.3;        // the overlap counts as at least this share [-]
   double information_scale = 1.0;        // scales the GICP Hessian given as loop information [-]
 
   template <class V>
@@ -30,6 +32,7 @@ struct LoopRegistrationConfig {
     v("score_search_radius_m", score_search_radius_m);
     v("score_plane_distance_m", score_plane_distance_m);
     v("score_max_normal_z", score_max_normal_z);
+    v("score_min_overlap", score_min_overlap);
     v("information_scale", information_scale);
   }
   void validate() const;
@@ -46,8 +49,8 @@ struct CosgLoopConfig {
   // [m] GICP pair gating per stage of the fine path, wide to narrow: a wide gate pulls a pose
   // that is off by up to ~1 m and ~10 deg into the basin of the narrow one.
   std::vector<double> fine_correspondence_schedule_m = {2.5, 1.2, 0.5};
-  double s_coarse = 0.7;        // S_coarse: a registration with this score is a loop [-]
-  double s_fine = 0.3;          // S_fine: weaker matches with at least this score are refined [-]
+  double s_coarse = 0.85;       // S_coarse: a registration with this score is a loop [-]
+  double s_fine = 0.4;          // S_fine: weaker matches with at least this score are refined [-]
   int max_fine_candidates = 3;  // best weak matches refined coarse-to-fine per detection
 
   template <class V>

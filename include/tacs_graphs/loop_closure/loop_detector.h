@@ -5,8 +5,12 @@
 // two partitions of a large room nearest the query. Each is registered with GICP from the
 // current pose estimates; the best by match score is a loop when it reaches S_coarse. When none
 // does (large initial pose error), the weaker matches reaching the relaxed S_fine are refined
-// coarse-to-fine with widening-then-narrowing correspondence gates, and the refined best is a
-// loop when it reaches S_coarse.
+// coarse-to-fine, with correspondence gates shrinking from wide to narrow, and the refined best
+// is a loop when it reaches S_coarse. The match score S is the share of the query's wall-like
+// points, within the overlap with the candidate, that lie on the candidate's surfaces.
+//
+// A loop's information is the GICP Hessian at the result (the unit-less plane covariances of
+// gicp.h, as for the odometry's keyframe information) times registration.information_scale.
 //
 // The distance baseline (hdl_graph_slam / S-Graphs+ style) runs on every keyframe: candidates
 // within a fixed xy distance that lie far enough back along the path, the lowest GICP fitness
@@ -44,10 +48,12 @@ struct LoopClosure {
 
 /// What one detection call did.
 struct LoopDetection {
-  std::vector<LoopClosure> loops;     // accepted loops (CoSG: at most one per searched partition)
-  std::vector<uint32_t> candidates;   // keyframes that passed the room / distance filters
-  std::vector<uint32_t> registered;   // keyframes that were registered against the query
-  std::vector<double> coarse_scores;  // CoSG: match score of each coarse registration, in order
+  std::vector<LoopClosure> loops;      // accepted loops (CoSG: at most one per searched partition)
+  std::vector<uint32_t> candidates;    // keyframes that passed the room / distance filters
+  std::vector<uint32_t> registered;    // keyframes that were registered against the query
+  std::vector<double> coarse_scores;   // CoSG: match score of each coarse registration, in order
+  std::vector<uint32_t> refined;       // CoSG: weak matches refined coarse-to-fine
+  std::vector<double> refined_scores;  // CoSG: their match scores after refinement
   std::vector<int> searched_partitions;  // CoSG: indices of the searched room partitions
   int partitions = 0;                    // CoSG: partitions of the room
   int registrations = 0;                 // GICP runs (a fine refinement counts each stage)
@@ -105,8 +111,9 @@ class LoopDetector {
     double score = 0.0;
   };
 
-  Registration registerPair(uint32_t candidate, uint32_t query, const Pose3& guess,
-                            double gate_m) const;
+  /// GICP of the query against the candidate from `guess`; scored unless `score` is false.
+  Registration registerPair(uint32_t candidate, uint32_t query, const Pose3& guess, double gate_m,
+                            bool score = true) const;
   LoopClosure makeLoop(const Registration& r, uint32_t query, LoopPath path) const;
   bool isRecent(const Keyframe& candidate, uint32_t candidate_id, const Keyframe& query,
                 uint32_t query_id) const;

@@ -14,6 +14,8 @@ void LoopRegistrationConfig::validate() const {
   requireConfig(score_plane_distance_m > 0.0, p + "score_plane_distance_m", "must be > 0");
   requireConfig(score_max_normal_z > 0.0 && score_max_normal_z <= 1.0, p + "score_max_normal_z",
                 "must be in (0, 1]");
+  requireConfig(score_min_overlap > 0.0 && score_min_overlap <= 1.0, p + "score_min_overlap",
+                "must be in (0, 1]");
   requireConfig(information_scale > 0.0, p + "information_scale", "must be > 0");
 }
 

@@ -94,23 +94,30 @@ double LoopDetector::matchScore(uint32_t candidate_id, uint32_t query_id,
   const auto& q_points = query.cloud->points();
   const auto& c_points = cand.cloud->points();
   const auto& c_covs = cand.cloud->covariances();
-  size_t matched = 0;
+  size_t overlap = 0, matched = 0;
   for (uint32_t i : query.scored_points) {
     const Eigen::Vector3d p = T_candidate_query * q_points[i];
     double dist_sq = 0.0;
     const int64_t j = cand.cloud->nearest(p, search_sq, &dist_sq);
-    if (j < 0) continue;
+    if (j < 0) continue;  // outside what the candidate saw: neither evidence for nor against
+    ++overlap;
     const Eigen::Vector3d r = p - c_points[j];
     // A match lies on the candidate's local surface; a point of a wall shifted along its own
     // plane still matches, one of a perpendicular wall does not.
     const double d_sq = hasNormal(c_covs[j]) ? squaredPlaneDistance(c_covs[j], r) : dist_sq;
     if (d_sq <= plane_sq) ++matched;
   }
-  return static_cast<double>(matched) / static_cast<double>(query.scored_points.size());
+  // Scored over the overlap, so two views of a room from 5 m apart (each seeing walls the other
+  // does not) score as high as close views when aligned; an alignment that pushes most of the
+  // query out of the candidate's view cannot win by a small overlap.
+  const double scored = static_cast<double>(query.scored_points.size());
+  return static_cast<double>(matched) /
+         std::max(static_cast<double>(overlap), rc.score_min_overlap * scored);
 }
 
 LoopDetector::Registration LoopDetector::registerPair(uint32_t candidate, uint32_t query,
-                                                      const Pose3& guess, double gate_m) const {
+                                                      const Pose3& guess, double gate_m,
+                                                      bool score) const {
   GicpConfig gc;
   gc.k_neighbors = config_.registration.k_neighbors;
   gc.max_iterations = config_.registration.max_iterations;
@@ -122,7 +129,7 @@ LoopDetector::Registration LoopDetector::registerPair(uint32_t candidate, uint32
   Registration r;
   r.candidate = candidate;
   r.gicp = gicp.align(guess);
-  r.score = matchScore(candidate, query, r.gicp.T_target_source);
+  if (score) r.score = matchScore(candidate, query, r.gicp.T_target_source);
   return r;
 }
 
@@ -251,11 +258,15 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
   for (const Registration* w : weak) {
     Pose3 pose = keyframes_.at(w->candidate).T_map_base.inverse() * query.T_map_base;
     Registration refined;
-    for (double gate : cc.fine_correspondence_schedule_m) {
-      refined = registerPair(w->candidate, query_id, pose, gate);
+    const auto& schedule = cc.fine_correspondence_schedule_m;
+    for (size_t stage = 0; stage < schedule.size(); ++stage) {
+      const bool last = stage + 1 == schedule.size();
+      refined = registerPair(w->candidate, query_id, pose, schedule[stage], last);
       pose = refined.gicp.T_target_source;
       ++det.registrations;
     }
+    det.refined.push_back(refined.candidate);
+    det.refined_scores.push_back(refined.score);
     if (!best_fine || refined.score > best_fine->score) best_fine = refined;
   }
   if (best_fine && best_fine->score >= cc.s_coarse) {
