@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tacs_graphs/common/types.h"
+#include "tacs_graphs/eval/room_metrics.h"
 #include "tacs_graphs/scene_graph/scene_graph.h"
 
 namespace tacs {
@@ -39,8 +40,9 @@ struct RunScores {
   SceneGraph graph;                       // as estimated, map frame
 };
 
-/// Reads trajectory_tum.txt, odometry_tum.txt, ground_truth_tum.txt, scene_graph.json and
-/// timing.json of `dir`. Throws std::runtime_error naming the missing or broken file.
+/// Reads trajectory_tum.txt, odometry_tum.txt, ground_truth_tum.txt, ground_truth.json,
+/// scene_graph.json and timing.json of `dir`. Throws std::runtime_error naming the missing or
+/// broken file.
 RunScores scoreRunFolder(const std::string& dir);
 
 /// The scene graph moved by T (keyframes, walls, rooms; loops are relative and stay).

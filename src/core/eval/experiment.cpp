@@ -6,6 +6,7 @@
 #include "tacs_graphs/common/trajectory_io.h"
 #include "tacs_graphs/eval/loop_metrics.h"
 #include "tacs_graphs/eval/trajectory_metrics.h"
+#include "tacs_graphs/sim/ground_truth.h"
 
 namespace tacs {
 
@@ -79,6 +80,12 @@ RunScores scoreRunFolder(const std::string& dir) {
   s.loops = loops.loops;
   s.correct_loops = loops.correct;
   s.pr_loop = loops.precision();
+  // Rooms are scored in the world frame: the map frame starts at the robot's first pose.
+  for (const auto& [id, room] : transformSceneGraph(s.graph, s.T_world_map).rooms) {
+    s.rooms_in_world.push_back(room);
+  }
+  s.room_metrics =
+      evaluateRooms(s.rooms_in_world, sim::readGroundTruth(dir + "/ground_truth.json").rooms);
   return s;
 }
 
