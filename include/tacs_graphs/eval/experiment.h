@@ -38,6 +38,8 @@ struct RunScores {
   double pr_loop = 0.0;
   Pose3 T_world_map = Pose3::Identity();  // the alignment of the map onto the world
   SceneGraph graph;                       // as estimated, map frame
+  std::vector<RoomNode> rooms_in_world;   // the rooms moved onto the world by T_world_map
+  RoomMetrics room_metrics;               // against the ground-truth rooms (ground_truth.json)
 };
 
 /// Reads trajectory_tum.txt, odometry_tum.txt, ground_truth_tum.txt, ground_truth.json,
