@@ -1,7 +1,8 @@
 // bench_rooms: room segmentation on the simulated worlds with ground-truth poses, TACS against
 // the voxel (S-Graphs+ style) baseline, scored against the worlds' ground-truth rooms.
 //
-//   bench_rooms [--worlds DIR] [--world NAME|FILE]... [--keyframe-distance M] [--verbose]
+//   bench_rooms [--worlds DIR] [--world NAME|FILE]... [--keyframe-distance M] [--config YAML]
+//               [--verbose]
 //
 // Per world: the simulator renders a scan at every keyframe (every 0.5 m of ground-truth path);
 // the scan goes to the gravity-aligned base frame; TraversabilityMapper + TraversableMap and
@@ -21,6 +22,7 @@
 
 #include "bench_common.h"
 #include "tacs_graphs/eval/room_metrics.h"
+#include "tacs_graphs/pipeline/pipeline_config.h"
 #include "tacs_graphs/rooms/room_segmenter.h"
 #include "tacs_graphs/sim/ground_truth.h"
 #include "tacs_graphs/sim/scan_stream.h"
@@ -37,6 +39,7 @@ struct Args {
   std::vector<std::string> worlds;
   double keyframe_distance = 0.5;
   bool verbose = false;
+  tacs::PipelineConfig config;  // --config FILE, else the defaults
 };
 
 struct MethodRun {
@@ -94,20 +97,20 @@ void runWorld(const std::string& path, const Args& args) {
   const tacs::Trajectory gt = stream.groundTruth();
   const Pose3 T_base_sensor = stream.baseToSensor();
 
-  const tacs::TraversabilityConfig trav_config;
+  const tacs::TraversabilityConfig& trav_config = args.config.traversability;
   const tacs::TraversabilityMapper mapper(trav_config);
   tacs::TraversableMap trav_map(trav_config);
-  const tacs::WallExtractor extractor{tacs::WallExtractionConfig{}};
-  tacs::WallMap walls;
+  const tacs::WallExtractor extractor{args.config.walls.extraction};
+  tacs::WallMap walls(args.config.walls.association);
   std::vector<MethodRun> runs(2);
   runs[0].method = "tacs";
   runs[1].method = "voxel";
   std::vector<tacs::RoomSegmenter> segmenters;
   for (const auto& run : runs) {
-    tacs::RoomsConfig config;
+    tacs::RoomsConfig config = args.config.rooms;
     config.method = run.method;
     // The sensor sits above base_link; the scans are turned into the levelled base frame.
-    segmenters.emplace_back(config, tacs::DominantAxesConfig{},
+    segmenters.emplace_back(config, args.config.walls.axes,
                             tacs::poseFromXyzRpy(0, 0, T_base_sensor.translation().z(), 0, 0, 0));
   }
 
@@ -216,12 +219,15 @@ int main(int argc, char** argv) {
       args.worlds.push_back(argv[++i]);
     } else if (a == "--keyframe-distance" && i + 1 < argc) {
       args.keyframe_distance = std::stod(argv[++i]);
+    } else if (a == "--config" && i + 1 < argc) {
+      args.config = tacs::loadPipelineConfig(argv[++i]).config;
     } else if (a == "--verbose") {
       args.verbose = true;
     } else {
       std::printf(
           "Usage: bench_rooms [--worlds DIR] [--world NAME|FILE]... [--keyframe-distance M] "
-          "[--verbose]\nRoom segmentation (tacs and voxel) on simulated worlds with ground-truth "
+          "[--config YAML] [--verbose]\nRoom segmentation (tacs and voxel) on simulated worlds "
+          "with ground-truth "
           "poses, scored against the worlds' ground-truth rooms.\n");
       return a == "--help" || a == "-h" ? 0 : 2;
     }
@@ -238,7 +244,7 @@ int main(int argc, char** argv) {
     paths.push_back(fs::exists(w) ? w : (fs::path(args.worlds_dir) / (w + ".json")).string());
   }
   std::printf(
-      "Room segmentation with ground-truth poses, keyframe every %.2f m, default config; "
+      "Room segmentation with ground-truth poses, keyframe every %.2f m; "
       "load %s\n\n",
       args.keyframe_distance, tacs::bench::loadAverage().c_str());
   std::printf(
