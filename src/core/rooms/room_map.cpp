@@ -153,12 +153,20 @@ RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
     for (int64_t c : small) shared += large.count(c);
     const double overlap = static_cast<double>(shared) / small.size();
     // The same wall landmarks on every axis both define are the same room even where the two
-    // observations saw disjoint parts of its free space (a long corridor walked in pieces).
+    // views saw disjoint parts of its free space (a long corridor walked in pieces). Landmarks
+    // of one wall plane (a wall broken by wide entrances) count when the views also touch:
+    // rooms in a row share such planes but not their free space.
+    const auto same_pair = [&](int lo, int hi, bool by_plane) {
+      const auto& a = m.room.walls;
+      const auto& b = observation.walls;
+      if (a[lo] < 0 || a[hi] < 0 || b[lo] < 0 || b[hi] < 0) return true;  // axis not shared
+      const auto same = [&](int c) { return a[c] == b[c] || (by_plane && sameWall(a[c], b[c])); };
+      return same(lo) && same(hi);
+    };
+    constexpr double kTouching = 0.05;  // share of the smaller view's cells [-]
     const bool same_walls =
-        (!m.room.hasXPair() || !observation.hasXPair() ||
-         (m.room.walls[0] == observation.walls[0] && m.room.walls[1] == observation.walls[1])) &&
-        (!m.room.hasYPair() || !observation.hasYPair() ||
-         (m.room.walls[2] == observation.walls[2] && m.room.walls[3] == observation.walls[3]));
+        (same_pair(0, 1, false) && same_pair(2, 3, false)) ||
+        (overlap >= kTouching && same_pair(0, 1, true) && same_pair(2, 3, true));
     // A view lying almost entirely inside the other is the same room whatever walls the
     // smaller one picked (a first, partial view of a room).
     const bool nested = overlap >= config_.nested_overlap;
