@@ -84,6 +84,33 @@ TEST(RoomsMerging, DisjointPiecesBetweenTheSameWallsAreOneCorridor) {
   EXPECT_EQ(second.room_id, first.room_id);
 }
 
+TEST(RoomsMerging, PiecesOfOneWallPlaneMergeOnlyWhenTheViewsTouch) {
+  // y walls at y = 0 (facing +y) and y = 4 (facing -y), each in two landmarks (x < 5, x > 5).
+  const auto yWall = [](uint32_t id, double y, int sign, double x0, double x1) {
+    WallLandmark w;
+    w.id = id;
+    w.normal = Eigen::Vector3d(0, sign, 0);
+    w.d = -sign * y;
+    w.endpoints[0] = {sign > 0 ? x0 : x1, y};
+    w.endpoints[1] = {sign > 0 ? x1 : x0, y};
+    return w;
+  };
+  const std::map<uint32_t, WallLandmark> walls = {{1, yWall(1, 0, 1, 0, 5)},
+                                                  {2, yWall(2, 4, -1, 0, 5)},
+                                                  {3, yWall(3, 0, 1, 5.5, 10)},
+                                                  {4, yWall(4, 4, -1, 5.5, 10)}};
+  // Two rooms in a row: the same wall planes, no shared free space.
+  RoomMap row;
+  row.addObservation(xCorridor(0, 5, 0.4, 3.6, 1, 2), walls);
+  EXPECT_TRUE(row.addObservation(xCorridor(5.6, 10, 0.4, 3.6, 3, 4), walls).created);
+  // Two views of one hall that touch: merged, the wall pieces tied.
+  RoomMap hall;
+  hall.addObservation(xCorridor(0, 5, 0.4, 3.6, 1, 2), walls);
+  const auto second = hall.addObservation(xCorridor(4.6, 10, 0.4, 3.6, 3, 4), walls);
+  EXPECT_FALSE(second.created);
+  EXPECT_EQ(second.wall_to_wall.size(), 2u);
+}
+
 TEST(RoomsMerging, FarAcrossOrDisjointOrPerpendicularStaysApart) {
   RoomMap map;
   map.addObservation(yCorridor(0, 2, 0, 10, 1, 2), kNoWalls);
