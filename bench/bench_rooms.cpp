@@ -2,7 +2,7 @@
 // the voxel (S-Graphs+ style) baseline, scored against the worlds' ground-truth rooms.
 //
 //   bench_rooms [--worlds DIR] [--world NAME|FILE]... [--keyframe-distance M] [--config YAML]
-//               [--verbose]
+//               [--trials K] [--verbose]
 //
 // Per world: the simulator renders a scan at every keyframe (every 0.5 m of ground-truth path);
 // the scan goes to the gravity-aligned base frame; TraversabilityMapper + TraversableMap and
@@ -10,7 +10,9 @@
 // method. Printed per world and method: N_room, precision, recall, F1, mean Dice over the
 // ground-truth rooms (eval/room_metrics.h), over- and under-segmentation counts, and the mean /
 // max time of RoomSegmenter::processKeyframe per keyframe. open_lobby also reports rooms whose
-// free space crosses the half wall (x = 12, y < 10) or lies over the railed drop-off.
+// free space crosses the half wall (x = 12, y < 10) or lies over the railed drop-off. With
+// --trials K each world runs with noise seeds 1..K and a consistency table (N_room, sigma_room,
+// DCS between trials, paper Table I) follows.
 #include <pcl/common/transforms.h>
 
 #include <algorithm>
@@ -39,6 +41,7 @@ struct Args {
   std::vector<std::string> worlds;
   double keyframe_distance = 0.5;
   bool verbose = false;
+  int trials = 1;  // noise seeds 1..trials; with more than one, N_room, sigma_room and DCS
   tacs::PipelineConfig config;  // --config FILE, else the defaults
 };
 
@@ -91,9 +94,14 @@ void lobbyChecks(const std::vector<tacs::RoomNode>& rooms, int* across_half_wall
   }
 }
 
-void runWorld(const std::string& path, const Args& args) {
+// One run of both methods on a world with the sensor noise seed `seed`; prints a row per method
+// and returns the rooms of each method (tacs, voxel).
+std::vector<std::vector<tacs::RoomNode>> runWorld(const std::string& path, const Args& args,
+                                                  uint64_t seed) {
   const tacs::sim::World world = tacs::sim::loadWorld(path);
-  tacs::sim::ScanStream stream(world, tacs::sim::SimOptions{});
+  tacs::sim::SimOptions options;
+  options.seed = seed;
+  tacs::sim::ScanStream stream(world, options);
   const tacs::Trajectory gt = stream.groundTruth();
   const Pose3 T_base_sensor = stream.baseToSensor();
 
@@ -189,6 +197,7 @@ void runWorld(const std::string& path, const Args& args) {
     }
     std::fflush(stdout);
   }
+  return {runs[0].rooms, runs[1].rooms};
 }
 
 std::string findWorldsDir() {
@@ -221,12 +230,15 @@ int main(int argc, char** argv) {
       args.keyframe_distance = std::stod(argv[++i]);
     } else if (a == "--config" && i + 1 < argc) {
       args.config = tacs::loadPipelineConfig(argv[++i]).config;
+    } else if (a == "--trials" && i + 1 < argc) {
+      args.trials = std::max(1, std::stoi(argv[++i]));
     } else if (a == "--verbose") {
       args.verbose = true;
     } else {
       std::printf(
           "Usage: bench_rooms [--worlds DIR] [--world NAME|FILE]... [--keyframe-distance M] "
-          "[--config YAML] [--verbose]\nRoom segmentation (tacs and voxel) on simulated worlds "
+          "[--config YAML] [--trials K] [--verbose]\nRoom segmentation (tacs and voxel) on "
+          "simulated worlds "
           "with ground-truth "
           "poses, scored against the worlds' ground-truth rooms.\n");
       return a == "--help" || a == "-h" ? 0 : 2;
@@ -250,13 +262,33 @@ int main(int argc, char** argv) {
   std::printf(
       "| world             | method | kf | rooms est / gt | P | R | F1 | mean Dice | over | "
       "under | ms/kf mean | ms/kf max |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::vector<std::string> consistency;
   for (const auto& p : paths) {
     try {
-      runWorld(p, args);
+      std::vector<std::vector<std::vector<tacs::RoomNode>>> trials(2);  // method -> trial
+      for (int t = 1; t <= args.trials; ++t) {
+        const auto rooms = runWorld(p, args, static_cast<uint64_t>(t));
+        for (size_t m = 0; m < rooms.size(); ++m) trials[m].push_back(rooms[m]);
+      }
+      for (size_t m = 0; m < trials.size() && args.trials > 1; ++m) {
+        const tacs::TrialSummary s = tacs::summarizeTrials(trials[m]);
+        char row[256];
+        std::snprintf(row, sizeof(row), "| %-17s | %-5s | %d | %5.2f | %4.2f | %5.1f |",
+                      fs::path(p).stem().c_str(), m == 0 ? "tacs" : "voxel", args.trials, s.n_room,
+                      s.sigma_room, 100.0 * s.dcs);
+        consistency.push_back(row);
+      }
     } catch (const std::exception& e) {
       std::fprintf(stderr, "%s: %s\n", p.c_str(), e.what());
       return 1;
     }
+  }
+  if (!consistency.empty()) {
+    std::printf(
+        "\nConsistency over trials (noise seeds 1..K): mean room count, its population "
+        "standard deviation, DCS between trials (eval/room_metrics.h)\n\n"
+        "| world | method | K | N_room | sigma_room | DCS [%%] |\n|---|---|---|---|---|---|\n");
+    for (const auto& row : consistency) std::printf("%s\n", row.c_str());
   }
   return 0;
 }
