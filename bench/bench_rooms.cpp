@@ -1,7 +1,8 @@
 // bench_rooms: room segmentation on the simulated worlds with ground-truth poses, TACS against
 // the voxel (S-Graphs+ style) baseline, scored against the worlds' ground-truth rooms.
 //
-//   bench_rooms [--worlds DIR] [--world NAME|FILE]... [--keyframe-distance M] [--verbose]
+//   bench_rooms [--worlds DIR] [--world NAME|FILE]... [--keyframe-distance M] [--config YAML]
+//               [--trials K] [--verbose]
 //
 // Per world: the simulator renders a scan at every keyframe (every 0.5 m of ground-truth path);
 // the scan goes to the gravity-aligned base frame; TraversabilityMapper + TraversableMap and
@@ -9,7 +10,9 @@
 // method. Printed per world and method: N_room, precision, recall, F1, mean Dice over the
 // ground-truth rooms (eval/room_metrics.h), over- and under-segmentation counts, and the mean /
 // max time of RoomSegmenter::processKeyframe per keyframe. open_lobby also reports rooms whose
-// free space crosses the half wall (x = 12, y < 10) or lies over the railed drop-off.
+// free space crosses the half wall (x = 12, y < 10) or lies over the railed drop-off. With
+// --trials K each world runs with noise seeds 1..K and a consistency table (N_room, sigma_room,
+// DCS between trials, paper Table I) follows.
 #include <pcl/common/transforms.h>
 
 #include <algorithm>
@@ -21,6 +24,7 @@
 
 #include "bench_common.h"
 #include "tacs_graphs/eval/room_metrics.h"
+#include "tacs_graphs/pipeline/pipeline_config.h"
 #include "tacs_graphs/rooms/room_segmenter.h"
 #include "tacs_graphs/sim/ground_truth.h"
 #include "tacs_graphs/sim/scan_stream.h"
@@ -37,6 +41,8 @@ struct Args {
   std::vector<std::string> worlds;
   double keyframe_distance = 0.5;
   bool verbose = false;
+  int trials = 1;  // noise seeds 1..trials; with more than one, N_room, sigma_room and DCS
+  tacs::PipelineConfig config;  // --config FILE, else the defaults
 };
 
 struct MethodRun {
@@ -88,26 +94,31 @@ void lobbyChecks(const std::vector<tacs::RoomNode>& rooms, int* across_half_wall
   }
 }
 
-void runWorld(const std::string& path, const Args& args) {
+// One run of both methods on a world with the sensor noise seed `seed`; prints a row per method
+// and returns the rooms of each method (tacs, voxel).
+std::vector<std::vector<tacs::RoomNode>> runWorld(const std::string& path, const Args& args,
+                                                  uint64_t seed) {
   const tacs::sim::World world = tacs::sim::loadWorld(path);
-  tacs::sim::ScanStream stream(world, tacs::sim::SimOptions{});
+  tacs::sim::SimOptions options;
+  options.seed = seed;
+  tacs::sim::ScanStream stream(world, options);
   const tacs::Trajectory gt = stream.groundTruth();
   const Pose3 T_base_sensor = stream.baseToSensor();
 
-  const tacs::TraversabilityConfig trav_config;
+  const tacs::TraversabilityConfig& trav_config = args.config.traversability;
   const tacs::TraversabilityMapper mapper(trav_config);
   tacs::TraversableMap trav_map(trav_config);
-  const tacs::WallExtractor extractor{tacs::WallExtractionConfig{}};
-  tacs::WallMap walls;
+  const tacs::WallExtractor extractor{args.config.walls.extraction};
+  tacs::WallMap walls(args.config.walls.association);
   std::vector<MethodRun> runs(2);
   runs[0].method = "tacs";
   runs[1].method = "voxel";
   std::vector<tacs::RoomSegmenter> segmenters;
   for (const auto& run : runs) {
-    tacs::RoomsConfig config;
+    tacs::RoomsConfig config = args.config.rooms;
     config.method = run.method;
     // The sensor sits above base_link; the scans are turned into the levelled base frame.
-    segmenters.emplace_back(config, tacs::DominantAxesConfig{},
+    segmenters.emplace_back(config, args.config.walls.axes,
                             tacs::poseFromXyzRpy(0, 0, T_base_sensor.translation().z(), 0, 0, 0));
   }
 
@@ -186,6 +197,7 @@ void runWorld(const std::string& path, const Args& args) {
     }
     std::fflush(stdout);
   }
+  return {runs[0].rooms, runs[1].rooms};
 }
 
 std::string findWorldsDir() {
@@ -216,12 +228,18 @@ int main(int argc, char** argv) {
       args.worlds.push_back(argv[++i]);
     } else if (a == "--keyframe-distance" && i + 1 < argc) {
       args.keyframe_distance = std::stod(argv[++i]);
+    } else if (a == "--config" && i + 1 < argc) {
+      args.config = tacs::loadPipelineConfig(argv[++i]).config;
+    } else if (a == "--trials" && i + 1 < argc) {
+      args.trials = std::max(1, std::stoi(argv[++i]));
     } else if (a == "--verbose") {
       args.verbose = true;
     } else {
       std::printf(
           "Usage: bench_rooms [--worlds DIR] [--world NAME|FILE]... [--keyframe-distance M] "
-          "[--verbose]\nRoom segmentation (tacs and voxel) on simulated worlds with ground-truth "
+          "[--config YAML] [--trials K] [--verbose]\nRoom segmentation (tacs and voxel) on "
+          "simulated worlds "
+          "with ground-truth "
           "poses, scored against the worlds' ground-truth rooms.\n");
       return a == "--help" || a == "-h" ? 0 : 2;
     }
@@ -238,19 +256,39 @@ int main(int argc, char** argv) {
     paths.push_back(fs::exists(w) ? w : (fs::path(args.worlds_dir) / (w + ".json")).string());
   }
   std::printf(
-      "Room segmentation with ground-truth poses, keyframe every %.2f m, default config; "
+      "Room segmentation with ground-truth poses, keyframe every %.2f m; "
       "load %s\n\n",
       args.keyframe_distance, tacs::bench::loadAverage().c_str());
   std::printf(
       "| world             | method | kf | rooms est / gt | P | R | F1 | mean Dice | over | "
       "under | ms/kf mean | ms/kf max |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::vector<std::string> consistency;
   for (const auto& p : paths) {
     try {
-      runWorld(p, args);
+      std::vector<std::vector<std::vector<tacs::RoomNode>>> trials(2);  // method -> trial
+      for (int t = 1; t <= args.trials; ++t) {
+        const auto rooms = runWorld(p, args, static_cast<uint64_t>(t));
+        for (size_t m = 0; m < rooms.size(); ++m) trials[m].push_back(rooms[m]);
+      }
+      for (size_t m = 0; m < trials.size() && args.trials > 1; ++m) {
+        const tacs::TrialSummary s = tacs::summarizeTrials(trials[m]);
+        char row[256];
+        std::snprintf(row, sizeof(row), "| %-17s | %-5s | %d | %5.2f | %4.2f | %5.1f |",
+                      fs::path(p).stem().c_str(), m == 0 ? "tacs" : "voxel", args.trials, s.n_room,
+                      s.sigma_room, 100.0 * s.dcs);
+        consistency.push_back(row);
+      }
     } catch (const std::exception& e) {
       std::fprintf(stderr, "%s: %s\n", p.c_str(), e.what());
       return 1;
     }
+  }
+  if (!consistency.empty()) {
+    std::printf(
+        "\nConsistency over trials (noise seeds 1..K): mean room count, its population "
+        "standard deviation, DCS between trials (eval/room_metrics.h)\n\n"
+        "| world | method | K | N_room | sigma_room | DCS [%%] |\n|---|---|---|---|---|---|\n");
+    for (const auto& row : consistency) std::printf("%s\n", row.c_str());
   }
   return 0;
 }

@@ -27,14 +27,27 @@ RoomObservation xCorridor(double x0, double x1, double y0, double y1, int yp, in
 
 const std::map<uint32_t, WallLandmark> kNoWalls;
 
+// A wall at x = `x` facing +x (sign 1) or -x (sign -1), along y in [0, 16].
+WallLandmark xWall(uint32_t id, double x, int sign) {
+  WallLandmark w;
+  w.id = id;
+  w.normal = Eigen::Vector3d(sign, 0, 0);
+  w.d = -sign * x;
+  w.endpoints[0] = {x, sign > 0 ? 16.0 : 0.0};
+  w.endpoints[1] = {x, sign > 0 ? 0.0 : 16.0};
+  return w;
+}
+
 TEST(RoomsMerging, OverlappingCorridorCloseAcrossIsMergedWithWallPairs) {
   RoomMap map;
-  const auto first = map.addObservation(yCorridor(0, 2, 0, 10, 1, 2), kNoWalls);
+  const std::map<uint32_t, WallLandmark> walls = {
+      {1, xWall(1, -0.4, 1)}, {2, xWall(2, 2.4, -1)}, {7, xWall(7, 2.6, -1)}};
+  const auto first = map.addObservation(yCorridor(0, 2, 0, 10, 1, 2), walls);
   EXPECT_TRUE(first.created);
   // Seen again further along, 0.3 m off across, with a new landmark for the x- wall.
   RoomObservation again = yCorridor(0.3, 2.3, 6, 16, 1, 7);
   again.keyframe_ids = {40, 41};
-  const auto second = map.addObservation(again, kNoWalls);
+  const auto second = map.addObservation(again, walls);
   EXPECT_FALSE(second.created);
   EXPECT_EQ(second.room_id, first.room_id);
   ASSERT_EQ(second.wall_to_wall.size(), 1u);
@@ -49,13 +62,62 @@ TEST(RoomsMerging, OverlappingCorridorCloseAcrossIsMergedWithWallPairs) {
   EXPECT_NEAR(max_y, 16.0, 0.2);
 }
 
+TEST(RoomsMerging, WallsFarApartAreNotTied) {
+  RoomMap map;
+  const std::map<uint32_t, WallLandmark> walls = {
+      {1, xWall(1, -0.4, 1)}, {2, xWall(2, 2.4, -1)}, {8, xWall(8, 3.9, -1)}};
+  map.addObservation(yCorridor(0, 2, 0, 10, 1, 2), walls);
+  // The same corridor, its x- wall taken 1.5 m further (a face behind an opening): merged, but
+  // the two x- walls are different walls and get no wall-to-wall edge.
+  RoomObservation again = yCorridor(0, 2, 0, 10, 1, 8);
+  again.center.x() += 0.75;
+  const auto second = map.addObservation(again, walls);
+  EXPECT_FALSE(second.created);
+  EXPECT_TRUE(second.wall_to_wall.empty());
+}
+
+TEST(RoomsMerging, DisjointPiecesBetweenTheSameWallsAreOneCorridor) {
+  RoomMap map;
+  const auto first = map.addObservation(yCorridor(0, 2, 0, 10, 1, 2), kNoWalls);
+  const auto second = map.addObservation(yCorridor(0, 2, 20, 30, 1, 2), kNoWalls);
+  EXPECT_FALSE(second.created);
+  EXPECT_EQ(second.room_id, first.room_id);
+}
+
+TEST(RoomsMerging, PiecesOfOneWallPlaneMergeOnlyWhenTheViewsTouch) {
+  // y walls at y = 0 (facing +y) and y = 4 (facing -y), each in two landmarks (x < 5, x > 5).
+  const auto yWall = [](uint32_t id, double y, int sign, double x0, double x1) {
+    WallLandmark w;
+    w.id = id;
+    w.normal = Eigen::Vector3d(0, sign, 0);
+    w.d = -sign * y;
+    w.endpoints[0] = {sign > 0 ? x0 : x1, y};
+    w.endpoints[1] = {sign > 0 ? x1 : x0, y};
+    return w;
+  };
+  const std::map<uint32_t, WallLandmark> walls = {{1, yWall(1, 0, 1, 0, 5)},
+                                                  {2, yWall(2, 4, -1, 0, 5)},
+                                                  {3, yWall(3, 0, 1, 5.5, 10)},
+                                                  {4, yWall(4, 4, -1, 5.5, 10)}};
+  // Two rooms in a row: the same wall planes, no shared free space.
+  RoomMap row;
+  row.addObservation(xCorridor(0, 5, 0.4, 3.6, 1, 2), walls);
+  EXPECT_TRUE(row.addObservation(xCorridor(5.6, 10, 0.4, 3.6, 3, 4), walls).created);
+  // Two views of one hall that touch: merged, the wall pieces tied.
+  RoomMap hall;
+  hall.addObservation(xCorridor(0, 5, 0.4, 3.6, 1, 2), walls);
+  const auto second = hall.addObservation(xCorridor(4.6, 10, 0.4, 3.6, 3, 4), walls);
+  EXPECT_FALSE(second.created);
+  EXPECT_EQ(second.wall_to_wall.size(), 2u);
+}
+
 TEST(RoomsMerging, FarAcrossOrDisjointOrPerpendicularStaysApart) {
   RoomMap map;
   map.addObservation(yCorridor(0, 2, 0, 10, 1, 2), kNoWalls);
   // Overlapping but 1.5 m apart across the corridor.
   EXPECT_TRUE(map.addObservation(yCorridor(1.5, 3.5, 0, 10, 3, 4), kNoWalls).created);
-  // Same axis, no shared free space.
-  EXPECT_TRUE(map.addObservation(yCorridor(0, 2, 20, 30, 1, 2), kNoWalls).created);
+  // Same axis, no shared free space, other walls.
+  EXPECT_TRUE(map.addObservation(yCorridor(0, 2, 20, 30, 8, 9), kNoWalls).created);
   // A perpendicular corridor crossing at a junction: no common axis.
   EXPECT_TRUE(map.addObservation(xCorridor(-5, 7, 4, 6, 5, 6), kNoWalls).created);
   EXPECT_EQ(map.rooms().size(), 4u);

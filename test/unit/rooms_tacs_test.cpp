@@ -101,6 +101,22 @@ TEST(RoomsTacs, SplitsTwoRoomsAndCorridorAtTheDoors) {
   EXPECT_TRUE(allInside(*corridor, -2, 12, 4, 6));
 }
 
+TEST(RoomsTacs, WritesRoomsAndKeyframeRoomIdsIntoTheSceneGraph) {
+  RoomSegmenter seg{RoomsConfig{}};
+  drive(&seg, test::twoRoomsAndCorridor(1.0), roomACorridorRoomB());
+  SceneGraph graph;
+  for (uint32_t k = 0; k < 14; ++k) graph.keyframes[k].id = k;
+  seg.writeTo(&graph);
+  ASSERT_EQ(graph.rooms.size(), 3u);
+  const MappedRoom* a = roomNear(seg, 2.5, 2.0);
+  ASSERT_TRUE(a);
+  const RoomNode& node = graph.rooms.at(a->id);
+  EXPECT_EQ(node.wall_ids.size(), 4u);
+  EXPECT_EQ(node.free_space.size(), a->room.free_space.size());
+  EXPECT_EQ(graph.keyframes.at(0).room_id, static_cast<int>(a->id));
+  EXPECT_EQ(graph.keyframes.at(13).room_id, -1);  // not a keyframe of any room
+}
+
 TEST(RoomsTacs, WideOpeningSplitsOnlyThroughTheDoorwayCut) {
   // A 2 m opening (a gap in a half wall): the safe graph alone passes through it.
   const auto plan = test::twoRoomsAndCorridor(2.0);

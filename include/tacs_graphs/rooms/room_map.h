@@ -3,11 +3,16 @@
 // TACS merging (addObservation): a new observation is the same room as a mapped one when their
 // free spaces overlap (share of the smaller one's cells at `overlap_cell`) and their centres are
 // close along the axes orthogonal to the walls both define (d(x) = |x_k - x~_k| for two
-// y-direction corridors, both axes for two four-wall rooms). Rooms of perpendicular corridors
-// share no axis and never merge. The mapped room takes over the observation's free space and
+// y-direction corridors, both axes for two four-wall rooms). Observations bounded by the same
+// walls (one landmark, or landmarks of one plane) on every axis both define also merge without
+// overlap (a long corridor or a hall walked in separate pieces), and so does a view lying almost entirely inside a mapped room
+// (`nested_overlap`, a first partial view). Otherwise perpendicular corridors, which share no
+// axis, never merge. The mapped room takes over the observation's free space and
 // keyframes, adopts a wall pair it lacked (a corridor re-detected as a four-wall room becomes a
 // room), and every wall of the observation that differs from the mapped room's wall of the same
-// category is returned as a wall-to-wall pair (eq. 4) for the backend.
+// category but lies within max_axis_distance of its plane (two landmarks of one wall) is
+// returned as a wall-to-wall pair (eq. 4) for the backend; where the walls of a pair are
+// different walls, the view with more free space gives the room its walls.
 //
 // Baseline merging (addByCenterDistance, S-Graphs+): the nearest mapped room within a fixed 2D
 // centre distance, whatever the free space; the room's region becomes the latest cluster.
@@ -85,6 +90,7 @@ class RoomMap {
                  const std::map<uint32_t, WallLandmark>& landmarks, RoomAssociation* out);
   std::unordered_set<int64_t> cellsOf(const std::vector<Eigen::Vector3d>& pts) const;
   void remember(const std::map<uint32_t, WallLandmark>& landmarks);
+  bool sameWall(int a, int b) const;
 
   RoomMergingConfig config_;
   std::map<uint32_t, MappedRoom> rooms_;

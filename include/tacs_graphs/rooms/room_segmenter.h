@@ -15,7 +15,8 @@
 // through room extraction and TACS room merging (RoomMap::addObservation).
 // method "voxel": the keyframe cloud is integrated into VoxelFreeSpace; every
 // update_every_keyframes keyframes all clusters are extracted and associated by centre distance
-// (RoomMap::addByCenterDistance), as S-Graphs+ does on a timer.
+// (RoomMap::addByCenterDistance), as S-Graphs+ does on a timer; every re-clustering reports each
+// cluster again (created = false), so room-triggered loop closure is meant for "tacs" only.
 // Walls come from the WallMap (the backend's, so room wall ids are landmark ids); the building
 // axes are estimated from it at every call.
 #pragma once

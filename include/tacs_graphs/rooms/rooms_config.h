@@ -30,7 +30,7 @@ struct TacsFreeSpaceConfig {
   double robot_search_radius = 0.4;
   /// T_inside of a keyframe is its room-graph component within this distance (xy) of the robot,
   /// the reach of one keyframe's local traversable graph; 0 takes the whole component [m].
-  double local_radius = 10.0;
+  double local_radius = 16.0;
   /// Traversable but unsafe nodes within this distance of a room's safe nodes join the room
   /// (its free space then reaches the walls); 0 keeps the safe nodes only [m].
   double border_distance = 0.6;
@@ -122,12 +122,16 @@ struct RoomMergingConfig {
   double min_overlap = 0.3;
   /// Largest centre distance along the axes orthogonal to the rooms' walls [m] (d(x) of eq. 4).
   double max_axis_distance = 1.0;
+  /// A room whose cells lie in another by at least this share is merged into it whatever its
+  /// centre (a first, partial view of a room whose walls were not all seen yet) [-].
+  double nested_overlap = 0.8;
 
   template <class V>
   void visit(V& v) {
     v("overlap_cell", overlap_cell);
     v("min_overlap", min_overlap);
     v("max_axis_distance", max_axis_distance);
+    v("nested_overlap", nested_overlap);
   }
   void validate() const;
 };

@@ -93,11 +93,23 @@ void RoomMap::mergeInto(MappedRoom* m, const RoomObservation& o, bool union_free
       m->room.walls[hi] = o.walls[hi];
       continue;
     }
+    // Walls of the same category that are two landmarks of one wall are tied (eq. 4). Where the
+    // two views chose different walls, the view with more free space decides.
+    const bool obs_larger = cellsOf(o.free_space).size() > m->cells.size();
+    bool replace = false;
     for (int c : {lo, hi}) {
-      if (m->room.walls[c] != o.walls[c]) {
+      if (m->room.walls[c] == o.walls[c]) continue;
+      if (sameWall(m->room.walls[c], o.walls[c])) {
         out->wall_to_wall.emplace_back(static_cast<uint32_t>(m->room.walls[c]),
                                        static_cast<uint32_t>(o.walls[c]));
+      } else {
+        replace = replace || obs_larger;
       }
+    }
+    if (replace) {
+      out->wall_to_wall.clear();
+      m->room.walls[lo] = o.walls[lo];
+      m->room.walls[hi] = o.walls[hi];
     }
   }
   m->room.kind = m->room.hasXPair() && m->room.hasYPair() ? RoomKind::kRoom : RoomKind::kCorridor;
@@ -133,15 +145,35 @@ RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
   double best_overlap = 0.0;
   for (auto& [id, m] : rooms_) {
     const double axis = axisDistance(m.room, observation);
-    if (axis < 0.0 || axis > config_.max_axis_distance) continue;
+    const bool aligned = axis >= 0.0 && axis <= config_.max_axis_distance;
     const auto& small = obs_cells.size() < m.cells.size() ? obs_cells : m.cells;
     const auto& large = obs_cells.size() < m.cells.size() ? m.cells : obs_cells;
     if (small.empty()) continue;
     size_t shared = 0;
     for (int64_t c : small) shared += large.count(c);
     const double overlap = static_cast<double>(shared) / small.size();
-    if (overlap >= config_.min_overlap && overlap > best_overlap) {
-      best_overlap = overlap;
+    // The same wall landmarks on every axis both define are the same room even where the two
+    // views saw disjoint parts of its free space (a long corridor walked in pieces). Landmarks
+    // of one wall plane (a wall broken by wide entrances) count when the views also touch:
+    // rooms in a row share such planes but not their free space.
+    const auto same_pair = [&](int lo, int hi, bool by_plane) {
+      const auto& a = m.room.walls;
+      const auto& b = observation.walls;
+      if (a[lo] < 0 || a[hi] < 0 || b[lo] < 0 || b[hi] < 0) return true;  // axis not shared
+      const auto same = [&](int c) { return a[c] == b[c] || (by_plane && sameWall(a[c], b[c])); };
+      return same(lo) && same(hi);
+    };
+    constexpr double kTouching = 0.05;  // share of the smaller view's cells [-]
+    const bool same_walls =
+        (same_pair(0, 1, false) && same_pair(2, 3, false)) ||
+        (overlap >= kTouching && same_pair(0, 1, true) && same_pair(2, 3, true));
+    // A view lying almost entirely inside the other is the same room whatever walls the
+    // smaller one picked (a first, partial view of a room).
+    const bool nested = overlap >= config_.nested_overlap;
+    const double score = same_walls && aligned ? std::max(overlap, 1.0) : overlap;
+    const bool match = nested || (aligned && (overlap >= config_.min_overlap || same_walls));
+    if (match && score > best_overlap) {
+      best_overlap = score;
       best = &m;
     }
   }
@@ -162,6 +194,17 @@ RoomAssociation RoomMap::addByCenterDistance(const RoomObservation& observation,
     }
   }
   return mergeOrCreate(best, observation, /*union_free_space=*/false, landmarks);
+}
+
+bool RoomMap::sameWall(int a, int b) const {
+  // Eq. 4 ties two landmarks of one wall; a wall the observation chose further away (a face of
+  // furniture, a wall seen only in part) is another wall and gets no edge.
+  const auto ma = wall_memo_.find(static_cast<uint32_t>(a));
+  const auto mb = wall_memo_.find(static_cast<uint32_t>(b));
+  if (ma == wall_memo_.end() || mb == wall_memo_.end()) return false;
+  const double offset =
+      std::abs(ma->second.normal.head<2>().dot(mb->second.midpoint - ma->second.midpoint));
+  return offset <= config_.max_axis_distance;
 }
 
 void RoomMap::remember(const std::map<uint32_t, WallLandmark>& landmarks) {

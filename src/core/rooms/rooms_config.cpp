@@ -50,6 +50,8 @@ void RoomMergingConfig::validate() const {
   requireConfig(overlap_cell > 0.0, p + "overlap_cell", "must be > 0");
   requireConfig(min_overlap > 0.0 && min_overlap <= 1.0, p + "min_overlap", "must be in (0, 1]");
   requireConfig(max_axis_distance > 0.0, p + "max_axis_distance", "must be > 0");
+  requireConfig(nested_overlap > 0.0 && nested_overlap <= 1.0, p + "nested_overlap",
+                "must be in (0, 1]");
 }
 
 void RoomsConfig::validate() const {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "tacs_graphs/walls/wall_segment.h"
@@ -155,21 +156,37 @@ std::optional<FreeSpaceRegion> TacsFreeSpace::emit(const TraversableMap& map,
   const TravGraph& g = map.graph();
   std::vector<char> in_room(g.nodes.size(), 0);
   std::unordered_set<int> whole;  // components taken whole (local_radius = 0)
+  std::unordered_map<int, std::vector<Eigen::Vector2d>> seeds;  // component -> keyframes in it
   for (const auto& a : accumulated_) {
     region.keyframe_ids.push_back(a.keyframe_id);
     const int l = labelAt(map, labels, a.position);
     if (l < 0) continue;
     if (config_.local_radius <= 0.0) {
       whole.insert(l);
-      continue;
-    }
-    for (uint32_t i : map.nodesWithin(a.position, config_.local_radius)) {
-      if (labels.label[i] == l) in_room[i] = 1;
+    } else {
+      seeds[l].push_back(a.position.head<2>());
     }
   }
   accumulated_.clear();
+  // One pass over the nodes: in a component of the region and within the local reach of one of
+  // its keyframes.
+  const double r2 = config_.local_radius * config_.local_radius;
   for (size_t i = 0; i < g.nodes.size(); ++i) {
-    if (labels.label[i] >= 0 && whole.count(labels.label[i])) in_room[i] = 1;
+    const int l = labels.label[i];
+    if (l < 0) continue;
+    if (whole.count(l)) {
+      in_room[i] = 1;
+      continue;
+    }
+    const auto it = seeds.find(l);
+    if (it == seeds.end()) continue;
+    const Eigen::Vector2d p = g.nodes[i].position.head<2>();
+    for (const auto& s : it->second) {
+      if ((p - s).squaredNorm() <= r2) {
+        in_room[i] = 1;
+        break;
+      }
+    }
   }
   attachBorder(g, labels, &in_room);
   for (size_t i = 0; i < g.nodes.size(); ++i) {
