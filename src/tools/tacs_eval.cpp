@@ -50,7 +50,11 @@ std::string sourceDir() {
   return env ? env : TACS_SOURCE_DIR;
 }
 
-std::string selfDir() { return fs::canonical("/proc/self/exe").parent_path().string(); }
+/// The folder of this executable, read once at start (a rebuild may replace the file later).
+const std::string& selfDir() {
+  static const std::string dir = fs::canonical("/proc/self/exe").parent_path().string();
+  return dir;
+}
 
 Options parse(int argc, char** argv) {
   Options o;
@@ -137,6 +141,8 @@ void progress(size_t done, size_t total, size_t skipped, double elapsed_s) {
 }
 
 int run(const Options& o) {
+  const std::string offline = selfDir() + "/tacs_offline";
+  if (!fs::exists(offline)) throw std::runtime_error(offline + ": not found (build tacs_offline)");
   const std::vector<tacs::EvalMethod> methods = tacs::loadEvalMethods(o.methods);
   const nlohmann::json base = tacs::loadYamlAsJson(o.config);
   const std::vector<tacs::EvalRun> runs = tacs::planRuns(o.worlds, methods, o.trials, o.out);
