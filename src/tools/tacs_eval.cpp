@@ -19,6 +19,7 @@
 #include "tacs_graphs/common/file_io.h"
 #include "tacs_graphs/common/timing.h"
 #include "tacs_graphs/eval/eval_report.h"
+#include "tool_main.h"
 
 namespace fs = std::filesystem;
 
@@ -181,18 +182,5 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options options;
-  try {
-    options = parse(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "tacs_eval: " << e.what() << "\n";
-    printUsage();
-    return 2;
-  }
-  try {
-    return run(options);
-  } catch (const std::exception& e) {
-    std::cerr << "\nerror: " << e.what() << "\n";
-    return 1;
-  }
+  return tacs::tools::toolMain("tacs_eval", argc, argv, parse, run, printUsage);
 }

@@ -16,6 +16,7 @@
 #include "tacs_graphs/ros/bag_scan_source.h"
 #include "tacs_graphs/sim/ground_truth.h"
 #include "tacs_graphs/sim/scan_stream.h"
+#include "tool_main.h"
 
 namespace {
 
@@ -250,18 +251,5 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options options;
-  try {
-    options = parse(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "tacs_offline: " << e.what() << "\n";
-    printUsage();
-    return 2;
-  }
-  try {
-    return run(options);
-  } catch (const std::exception& e) {
-    std::cerr << "\nerror: " << e.what() << "\n";
-    return 1;
-  }
+  return tacs::tools::toolMain("tacs_offline", argc, argv, parse, run, printUsage);
 }
