@@ -32,7 +32,7 @@ SceneGraph graphWith(uint32_t up_to, double y_offset) {
 }
 
 TEST(RoomSegmentationSession, KeyframesWaitForTheBackendInIdOrder) {
-  RoomSegmentationSession session(PipelineConfig(), RoomSegmentationOptions());
+  RoomSegmentationSession session{PipelineConfig(), RoomSegmentationOptions()};
   for (uint32_t id = 0; id < 3; ++id) {
     session.addGraph(id, 1.0 + id, poseFromXyzRpy(0.5 * id, 0, 0, 0, 0, 0), flatGraph());
   }
@@ -62,7 +62,7 @@ TEST(RoomSegmentationSession, AKeyframeTheBackendNeverPlacesGoesInAfterTheWait) 
 }
 
 TEST(RoomSegmentationSession, MovedKeyframesReposeTheMapAndWallsMirrorTheBackend) {
-  RoomSegmentationSession session(PipelineConfig(), RoomSegmentationOptions());
+  RoomSegmentationSession session{PipelineConfig(), RoomSegmentationOptions()};
   for (uint32_t id = 0; id < 2; ++id) {
     session.addGraph(id, 1.0 + id, poseFromXyzRpy(0.5 * id, 0, 0, 0, 0, 0), flatGraph());
   }
