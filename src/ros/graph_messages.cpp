@@ -82,6 +82,8 @@ tacs_graphs::TraversableGraph toTraversableGraphMsg(const TravGraph& graph, uint
     m.normal = toVector(n.normal);
     m.label = static_cast<uint8_t>(n.label);
     m.inferred = n.inferred;
+    m.traversable = n.traversable;
+    m.safe = n.safe;
     m.variance = n.variance;
     m.clearance = n.clearance;
     msg.nodes.push_back(m);
@@ -105,6 +107,8 @@ TravGraph fromTraversableGraphMsg(const tacs_graphs::TraversableGraph& msg) {
     n.normal = fromVector(m.normal);
     n.label = m.label <= 2 ? static_cast<TravLabel>(m.label) : TravLabel::kUnknown;
     n.inferred = m.inferred;
+    n.traversable = m.traversable;
+    n.safe = m.safe;
     n.variance = m.variance;
     n.clearance = m.clearance;
     graph.nodes.push_back(n);

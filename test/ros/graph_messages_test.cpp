@@ -108,6 +108,8 @@ TEST(GraphMessages, TraversableGraphRoundTrip) {
     n.label = i == 2 ? TravLabel::kNonGround : TravLabel::kGround;
     n.inferred = i == 1;
     n.clearance = 0.25f * i;
+    n.traversable = i < 2;  // the edge's ends
+    n.safe = i == 1;
     g.nodes.push_back(n);
   }
   g.edges = {{0, 1}};
@@ -122,6 +124,11 @@ TEST(GraphMessages, TraversableGraphRoundTrip) {
   EXPECT_EQ(back.nodes[2].label, TravLabel::kNonGround);
   EXPECT_TRUE(back.nodes[1].inferred);
   EXPECT_FLOAT_EQ(back.nodes[2].clearance, 0.5f);
+  // The flags the traversable map builds free space from.
+  EXPECT_TRUE(back.nodes[0].traversable);
+  EXPECT_FALSE(back.nodes[0].safe);
+  EXPECT_TRUE(back.nodes[1].safe);
+  EXPECT_FALSE(back.nodes[2].traversable);
   ASSERT_EQ(back.edges.size(), 1u);
   EXPECT_EQ(back.edges[0].second, 1u);
 }

@@ -38,7 +38,8 @@ WallSegment fromWallObservationMsg(const tacs_graphs::WallObservation& msg);
 tacs_graphs::TraversableGraph toTraversableGraphMsg(const TravGraph& graph, uint32_t keyframe_id,
                                                     const Pose3& T_odom_base,
                                                     const std::string& base_frame, double stamp);
-/// Node flags `traversable` and `safe` are not carried by the message: they come back false.
+/// The traversable graph of a keyframe (base frame), node flags `traversable` and `safe` included:
+/// the TraversableMap builds free space from them.
 TravGraph fromTraversableGraphMsg(const tacs_graphs::TraversableGraph& msg);
 
 /// A mapped room of the room segmenter and what room merging did with the observation that
