@@ -21,31 +21,15 @@ std::string defaultOutputDir() {
   return std::string(home ? home : "/tmp") + "/.ros/tacs_graphs";
 }
 
-// The map_export section, read on its own so that the node works whether or not the pipeline
-// configuration lists it.
-MapExportConfig loadMapExportConfig(const ros::NodeHandle& nh, const std::string& ns) {
-  MapExportConfig config;
-  XmlRpc::XmlRpcValue tree;
-  if (nh.getParam(ns + "/map_export", tree)) {
-    std::vector<std::string> unknown;
-    configFromJson(xmlRpcToJson(tree), "ROS parameter " + ns + "/map_export", &config, &unknown);
-  }
-  config.validate();
-  return config;
-}
-
 }  // namespace
 
 BackendNode::BackendNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
   const std::string config_ns = pnh.param<std::string>("config_ns", "/tacs");
   config_ = loadPipelineConfigFromRos(nh, config_ns);
-  map_config_ = loadMapExportConfig(nh, config_ns);
   output_dir_ = pnh.param<std::string>("output_dir", "");
   if (output_dir_.empty()) output_dir_ = defaultOutputDir();
   save_on_shutdown_ = pnh.param("save_on_shutdown", true);
-  BackendSessionOptions options;
-  options.room_match_distance_m = pnh.param("room_match_distance_m", 1.0);
-  session_ = std::make_unique<BackendSession>(config_, options);
+  session_ = std::make_unique<BackendSession>(config_, BackendSessionOptions());
   if (pnh.param("recover", false)) {
     try {
       const size_t n = session_->recover(output_dir_);
@@ -111,10 +95,16 @@ void BackendNode::wallsCallback(const tacs_graphs::WallObservations::ConstPtr& m
 }
 
 void BackendNode::roomsCallback(const tacs_graphs::RoomObservations::ConstPtr& msg) {
-  std::vector<RoomNode> rooms;
-  for (const auto& r : msg->rooms) rooms.push_back(fromRoomObservationMsg(r));
-  session_->addRooms(rooms);
-  update();
+  // Rooms arrive associated (room merging runs in room_segmentation) with the backend's wall ids.
+  size_t stored = 0;
+  for (const auto& r : msg->rooms) {
+    if (session_->setRoom(fromRoomObservationMsg(r), wallToWallPairs(r))) {
+      ++stored;
+    } else {
+      warnings_.warn("room observation", "no facing wall pair in the graph, room not updated");
+    }
+  }
+  if (stored > 0) update();
 }
 
 void BackendNode::loopCallback(const tacs_graphs::LoopClosure::ConstPtr& msg) {
@@ -149,13 +139,13 @@ void BackendNode::publishTf(const ros::TimerEvent&) {
 void BackendNode::publishMap(const ros::TimerEvent&) {
   if (!map_dirty_ || map_pub_.getNumSubscribers() == 0) return;
   map_dirty_ = false;
-  map_pub_.publish(toRosCloud(session_->mapCloud(map_config_.cloud_voxel_m),
+  map_pub_.publish(toRosCloud(session_->mapCloud(config_.map_export.cloud_voxel_m),
                               config_.frames.map_frame, latest_stamp_));
 }
 
 bool BackendNode::save(std::string* message) {
   try {
-    session_->save(output_dir_, map_config_);
+    session_->save(output_dir_, config_.map_export);
     *message =
         "saved " + std::to_string(session_->keyframeCount()) + " keyframes to " + output_dir_;
     ROS_INFO_STREAM(*message);

@@ -3,6 +3,7 @@
 #include <pcl/io/pcd_io.h>
 
 #include <algorithm>
+#include <array>
 #include <fstream>
 #include <stdexcept>
 
@@ -64,6 +65,38 @@ WallSegment wallFromJson(const nlohmann::json& j) {
   w.z_min = j.at("z_range").at(0).get<double>();
   w.z_max = j.at("z_range").at(1).get<double>();
   return w;
+}
+
+// The mapped room as the room segmenter sent it (its free space in 3D, wall categories kept).
+nlohmann::json roomToJson(const MappedRoom& room) {
+  const RoomObservation& r = room.room;
+  nlohmann::json free_space = nlohmann::json::array();
+  for (const auto& p : r.free_space) free_space.push_back({p.x(), p.y(), p.z()});
+  return {{"id", room.id},
+          {"kind", roomKindName(r.kind)},
+          {"walls", r.walls},
+          {"center", {r.center.x(), r.center.y(), r.center.z()}},
+          {"axes_yaw", r.axes_yaw},
+          {"free_space", free_space},
+          {"keyframe_ids", r.keyframe_ids},
+          {"observations", room.observations}};
+}
+
+MappedRoom roomFromJson(const nlohmann::json& j) {
+  MappedRoom room;
+  room.id = j.at("id").get<uint32_t>();
+  RoomObservation& r = room.room;
+  r.kind = j.at("kind").get<std::string>() == "corridor" ? RoomKind::kCorridor : RoomKind::kRoom;
+  r.walls = j.at("walls").get<std::array<int, 4>>();
+  const auto c = j.at("center").get<std::vector<double>>();
+  r.center = Eigen::Vector3d(c.at(0), c.at(1), c.at(2));
+  r.axes_yaw = j.at("axes_yaw").get<double>();
+  for (const auto& p : j.at("free_space")) {
+    r.free_space.emplace_back(p.at(0).get<double>(), p.at(1).get<double>(), p.at(2).get<double>());
+  }
+  r.keyframe_ids = j.at("keyframe_ids").get<std::vector<uint32_t>>();
+  room.observations = j.at("observations").get<uint32_t>();
+  return room;
 }
 
 }  // namespace
@@ -146,48 +179,18 @@ size_t BackendSession::pendingCount() const {
   return pending_walls_.size() + pending_loops_.size();
 }
 
-std::vector<uint32_t> BackendSession::addRooms(const std::vector<RoomNode>& observations) {
-  std::vector<uint32_t> ids;
-  for (const RoomNode& obs : observations) {
-    RoomNode* match = nullptr;
-    double best = options_.room_match_distance_m;
-    for (auto& [id, room] : rooms_) {
-      const double dist = (room.center.head<2>() - obs.center.head<2>()).norm();
-      if (room.kind == obs.kind && dist <= best) {
-        best = dist;
-        match = &room;
-      }
-    }
-    if (!match) {
-      const uint32_t id = next_room_id_++;
-      match = &rooms_[id];
-      match->id = id;
-    }
-    // The newest observation describes the room best (more free space seen, better poses);
-    // keyframes accumulate.
-    std::vector<uint32_t> keyframes = match->keyframe_ids;
-    const uint32_t id = match->id;
-    *match = obs;
-    match->id = id;
-    keyframes.insert(keyframes.end(), obs.keyframe_ids.begin(), obs.keyframe_ids.end());
-    std::sort(keyframes.begin(), keyframes.end());
-    keyframes.erase(std::unique(keyframes.begin(), keyframes.end()), keyframes.end());
-    match->keyframe_ids = keyframes;
-    ids.push_back(id);
-  }
-  return ids;
-}
-
-SceneGraph BackendSession::sceneGraph() const {
-  SceneGraph graph = backend_.sceneGraph();
-  graph.rooms = rooms_;
-  for (const auto& [id, room] : rooms_) {
-    for (const uint32_t kf : room.keyframe_ids) {
-      const auto it = graph.keyframes.find(kf);
-      if (it != graph.keyframes.end()) it->second.room_id = static_cast<int>(id);
-    }
-  }
-  return graph;
+bool BackendSession::setRoom(const MappedRoom& room,
+                             const std::vector<std::pair<uint32_t, uint32_t>>& wall_to_wall) {
+  if (!backend_.setRoom(room)) return false;
+  for (const auto& [mapped, observed] : wall_to_wall) backend_.addWallToWall(mapped, observed);
+  nlohmann::json entry = roomToJson(room);
+  nlohmann::json pairs = journal_rooms_.count(room.id) > 0
+                             ? journal_rooms_[room.id].at("wall_to_wall")
+                             : nlohmann::json::array();
+  for (const auto& [mapped, observed] : wall_to_wall) pairs.push_back({mapped, observed});
+  entry["wall_to_wall"] = pairs;
+  journal_rooms_[room.id] = std::move(entry);
+  return true;
 }
 
 std::map<uint32_t, uint32_t> BackendSession::wallObservationCounts() const {
@@ -203,14 +206,14 @@ PointCloud BackendSession::mapCloud(double voxel_m) const {
 }
 
 nlohmann::json BackendSession::journal() const {
-  SceneGraph only_rooms;
-  only_rooms.rooms = rooms_;
+  nlohmann::json rooms = nlohmann::json::array();
+  for (const auto& [id, room] : journal_rooms_) rooms.push_back(room);
   return {{"format", "tacs_graphs/backend_journal"},
           {"version", 1},
           {"keyframes", journal_keyframes_},
           {"walls", journal_walls_},
           {"loops", journal_loops_},
-          {"rooms", only_rooms.toJson().at("rooms")}};
+          {"rooms", rooms}};
 }
 
 void BackendSession::save(const std::string& dir, const MapExportConfig& map_config) const {
@@ -255,11 +258,14 @@ size_t BackendSession::recover(const std::string& dir) {
       edge.score = l.at("score").get<double>();
       addLoop(edge, matrixFromJson(l.at("information")));
     }
-    nlohmann::json rooms_only = SceneGraph().toJson();
-    rooms_only["rooms"] = j.at("rooms");
-    const SceneGraph with_rooms = SceneGraph::fromJson(rooms_only);
-    rooms_ = with_rooms.rooms;
-    for (const auto& [id, room] : rooms_) next_room_id_ = std::max(next_room_id_, id + 1);
+    // Rooms last: their factors need the walls.
+    for (const auto& r : j.at("rooms")) {
+      std::vector<std::pair<uint32_t, uint32_t>> pairs;
+      for (const auto& p : r.at("wall_to_wall")) {
+        pairs.emplace_back(p.at(0).get<uint32_t>(), p.at(1).get<uint32_t>());
+      }
+      setRoom(roomFromJson(r), pairs);
+    }
     if (recovered > 0) backend_.optimize();
     PointCloud::Ptr map(new PointCloud);
     if (pcl::io::loadPCDFile(dir + "/map.pcd", *map) == 0) recovered_map_ = map;

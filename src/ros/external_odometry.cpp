@@ -79,7 +79,14 @@ OdometryResult ExternalOdometry::process(double stamp, const PointCloud& scan_in
       angleDeg(motion) >= config_.keyframe_angle_deg) {
     result.is_keyframe = true;
     result.keyframe_id = next_keyframe_id_++;
+    // Handed on at the keyframe grid, as LidarOdometry does (odometry.keyframe_cloud_voxel_m).
     result.keyframe_cloud = cloud;
+    if (config_.keyframe_cloud_voxel_m > 0.0 &&
+        config_.keyframe_cloud_voxel_m != config_.preprocess.voxel_size_m) {
+      PreprocessConfig fine = config_.preprocess;
+      fine.voxel_size_m = config_.keyframe_cloud_voxel_m;
+      result.keyframe_cloud.reset(new PointCloud(preprocess(scan_in_base, fine)));
+    }
     if (has_keyframe_) result.information = information_;
     has_keyframe_ = true;
     last_keyframe_pose_ = *pose;

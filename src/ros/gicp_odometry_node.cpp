@@ -5,7 +5,6 @@
 
 #include <cmath>
 
-#include "tacs_graphs/odometry/preprocess.h"
 #include "tacs_graphs/ros/cloud_conversion.h"
 #include "tacs_graphs/ros/graph_messages.h"
 #include "tacs_graphs/ros/message_conversion.h"
@@ -28,7 +27,6 @@ GicpOdometryNode::GicpOdometryNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
   const std::string config_ns = pnh.param<std::string>("config_ns", "/tacs");
   config_ = loadPipelineConfigFromRos(nh, config_ns);
   publish_tf_ = pnh.param("publish_tf", true);
-  keyframe_cloud_voxel_m_ = pnh.param("keyframe_cloud_voxel_m", 0.1);
   const std::string points_topic = pnh.param<std::string>("points_topic", "/velodyne_points");
   const std::string external_topic = pnh.param<std::string>("external_odom_topic", "");
 
@@ -137,10 +135,10 @@ void GicpOdometryNode::processCloud(const sensor_msgs::PointCloud2::ConstPtr& ms
   }
   last_stamp_ = stamp;
   ++scans_processed_;
-  publish(result, scan_in_base);
+  publish(result);
 }
 
-void GicpOdometryNode::publish(const OdometryResult& result, const PointCloud& scan_in_base) {
+void GicpOdometryNode::publish(const OdometryResult& result) {
   const FramesConfig& f = config_.frames;
   odom_pub_.publish(toOdometryMsg(result.T_odom_base, f.odom_frame, f.base_frame, result.stamp));
   if (publish_tf_) {
@@ -148,16 +146,10 @@ void GicpOdometryNode::publish(const OdometryResult& result, const PointCloud& s
         toTransformMsg(result.T_odom_base, f.odom_frame, f.base_frame, result.stamp));
   }
   if (!result.is_keyframe || !result.keyframe_cloud) return;
-  PointCloud cloud;
-  if (keyframe_cloud_voxel_m_ > 0.0) {
-    PreprocessConfig fine = config_.odometry.preprocess;
-    fine.voxel_size_m = keyframe_cloud_voxel_m_;
-    cloud = preprocess(scan_in_base, fine);
-  } else {
-    cloud = *result.keyframe_cloud;
-  }
+  // The odometry hands the keyframe cloud at odometry.keyframe_cloud_voxel_m.
   keyframe_pub_.publish(toKeyframeMsg(result.keyframe_id, result.stamp, result.T_odom_base,
-                                      result.information, cloud, f.odom_frame, f.base_frame));
+                                      result.information, *result.keyframe_cloud, f.odom_frame,
+                                      f.base_frame));
 }
 
 }  // namespace tacs

@@ -82,6 +82,8 @@ tacs_graphs::TraversableGraph toTraversableGraphMsg(const TravGraph& graph, uint
     m.normal = toVector(n.normal);
     m.label = static_cast<uint8_t>(n.label);
     m.inferred = n.inferred;
+    m.traversable = n.traversable;
+    m.safe = n.safe;
     m.variance = n.variance;
     m.clearance = n.clearance;
     msg.nodes.push_back(m);
@@ -105,6 +107,8 @@ TravGraph fromTraversableGraphMsg(const tacs_graphs::TraversableGraph& msg) {
     n.normal = fromVector(m.normal);
     n.label = m.label <= 2 ? static_cast<TravLabel>(m.label) : TravLabel::kUnknown;
     n.inferred = m.inferred;
+    n.traversable = m.traversable;
+    n.safe = m.safe;
     n.variance = m.variance;
     n.clearance = m.clearance;
     graph.nodes.push_back(n);
@@ -117,17 +121,66 @@ TravGraph fromTraversableGraphMsg(const tacs_graphs::TraversableGraph& msg) {
   return graph;
 }
 
-RoomNode fromRoomObservationMsg(const tacs_graphs::RoomObservation& msg) {
-  RoomNode room;
-  room.kind =
-      msg.kind == tacs_graphs::RoomObservation::CORRIDOR ? RoomKind::kCorridor : RoomKind::kRoom;
-  for (const int32_t id : msg.wall_ids) {
-    if (id >= 0) room.wall_ids.push_back(static_cast<uint32_t>(id));
+tacs_graphs::RoomObservation toRoomObservationMsg(const MappedRoom& room,
+                                                  const RoomAssociation& association) {
+  tacs_graphs::RoomObservation msg;
+  const RoomObservation& r = room.room;
+  msg.room_id = room.id;
+  msg.kind = r.kind == RoomKind::kCorridor ? tacs_graphs::RoomObservation::CORRIDOR
+                                           : tacs_graphs::RoomObservation::ROOM;
+  for (size_t i = 0; i < r.walls.size(); ++i) msg.wall_ids[i] = r.walls[i];
+  msg.center = toPoint(r.center);
+  msg.axes_yaw = r.axes_yaw;
+  msg.free_space.reserve(r.free_space.size());
+  for (const auto& p : r.free_space) msg.free_space.push_back(toPoint(p));
+  msg.keyframe_ids.assign(r.keyframe_ids.begin(), r.keyframe_ids.end());
+  msg.redetected = !association.created;
+  for (const auto& [mapped, observed] : association.wall_to_wall) {
+    msg.wall_to_wall.push_back(mapped);
+    msg.wall_to_wall.push_back(observed);
   }
-  room.center = fromPoint(msg.center);
-  for (const auto& p : msg.free_space) room.free_space.emplace_back(p.x, p.y);
-  room.keyframe_ids.assign(msg.keyframe_ids.begin(), msg.keyframe_ids.end());
+  return msg;
+}
+
+MappedRoom fromRoomObservationMsg(const tacs_graphs::RoomObservation& msg) {
+  MappedRoom room;
+  room.id = msg.room_id;
+  room.observations = 1;
+  RoomObservation& r = room.room;
+  r.kind =
+      msg.kind == tacs_graphs::RoomObservation::CORRIDOR ? RoomKind::kCorridor : RoomKind::kRoom;
+  for (size_t i = 0; i < r.walls.size(); ++i)
+    r.walls[i] = msg.wall_ids[i] >= 0 ? msg.wall_ids[i] : -1;
+  r.center = fromPoint(msg.center);
+  r.axes_yaw = msg.axes_yaw;
+  r.free_space.reserve(msg.free_space.size());
+  for (const auto& p : msg.free_space) r.free_space.push_back(fromPoint(p));
+  r.keyframe_ids.assign(msg.keyframe_ids.begin(), msg.keyframe_ids.end());
   return room;
+}
+
+std::vector<std::pair<uint32_t, uint32_t>> wallToWallPairs(
+    const tacs_graphs::RoomObservation& msg) {
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  for (size_t i = 0; i + 1 < msg.wall_to_wall.size(); i += 2) {
+    pairs.emplace_back(msg.wall_to_wall[i], msg.wall_to_wall[i + 1]);
+  }
+  return pairs;
+}
+
+tacs_graphs::LoopClosure toLoopClosureMsg(const LoopClosure& loop, int room_id,
+                                          const std::string& map_frame, double stamp) {
+  tacs_graphs::LoopClosure msg;
+  msg.header.stamp.fromSec(stamp);
+  msg.header.frame_id = map_frame;
+  msg.from_id = loop.from;
+  msg.to_id = loop.to;
+  msg.relative_pose = toPoseMsg(loop.T_from_to);
+  msg.score = loop.score;
+  msg.fitness = loop.fitness;
+  toMatrixArray(loop.information, &msg.information);
+  msg.room_id = room_id;
+  return msg;
 }
 
 LoopEdge fromLoopClosureMsg(const tacs_graphs::LoopClosure& msg) {

@@ -4,7 +4,8 @@
 Simulates the world with tacs_sim into a temporary folder, plays the bag with rosbag play
 --clock, waits until the backend has taken every keyframe, saves through /backend/save and then
 checks: keyframes along the whole path, the walls of the scene graph against the ground-truth
-wall faces (position and direction), TF map -> odom, and that every node of the pipeline is alive.
+wall faces (position and direction), rooms whose centres lie in distinct ground-truth rooms,
+TF map -> odom, and that every node of the pipeline is alive.
 """
 import json
 import math
@@ -23,7 +24,9 @@ import rosnode
 import rospy
 import rostest
 
-NODES = ['/gicp_odometry', '/traversability', '/wall_extraction', '/backend']
+NODES = ['/gicp_odometry', '/traversability', '/wall_extraction', '/room_segmentation',
+         '/loop_closure', '/backend']
+MIN_ROOMS_IN_GT = 2         # smoke: the path visits room A, room B and the corridor
 WALL_TOLERANCE_M = 0.15     # detected face vs ground-truth face, perpendicular distance
 WALL_ANGLE_TOLERANCE_DEG = 5.0
 MIN_MATCHED_SHARE = 0.8     # of the detected wall length that lies on a ground-truth face
@@ -71,6 +74,15 @@ def read_tum(path):
 
 def yaw_of(qx, qy, qz, qw):
     return math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+
+
+def inside(polygon, x, y):
+    """Even-odd rule point-in-polygon test in the xy plane."""
+    result = False
+    for (x0, y0), (x1, y1) in zip(polygon, polygon[1:] + polygon[:1]):
+        if (y0 > y) != (y1 > y) and x < x0 + (y - y0) * (x1 - x0) / (y1 - y0):
+            result = not result
+    return result
 
 
 def wall_faces(gt_wall):
@@ -154,6 +166,7 @@ class PipelineTest(unittest.TestCase):
         with open(os.path.join(self.tmp, 'ground_truth.json')) as f:
             gt = json.load(f)
         self.check_walls(saved, gt, truth)
+        self.check_rooms(saved, gt, truth)
 
     def check_keyframes(self, saved, truth):
         keyframes = saved['keyframes']
@@ -201,6 +214,20 @@ class PipelineTest(unittest.TestCase):
         self.assertGreaterEqual(share, MIN_MATCHED_SHARE, 'walls off the ground-truth faces')
         # Smoke: two rooms and a corridor show 14 wall faces; the path sees most of them well.
         self.assertGreaterEqual(len(found_faces), 6, 'too few ground-truth walls found')
+
+    def check_rooms(self, saved, gt, truth):
+        to_world, _ = self.world_from_map(saved, truth)
+        found = {}
+        for room in saved['rooms']:
+            x, y = to_world(room['center'][0], room['center'][1])
+            hits = [r['id'] for r in gt['rooms'] if inside(r['polygon'], x, y)]
+            rospy.loginfo('room %d (%s, %d walls) at world (%.2f, %.2f): %s', room['id'],
+                          room['kind'], len(room['wall_ids']), x, y, hits or 'no ground-truth room')
+            for h in hits:
+                found.setdefault(h, room['id'])
+        self.assertGreaterEqual(len(found), MIN_ROOMS_IN_GT,
+                                '%d scene-graph rooms lie in %d distinct ground-truth rooms: %s'
+                                % (len(saved['rooms']), len(found), sorted(found)))
 
 
 if __name__ == '__main__':

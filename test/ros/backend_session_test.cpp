@@ -66,30 +66,50 @@ TEST(BackendSession, LoopsWaitForBothKeyframes) {
   EXPECT_EQ(session.sceneGraph().loops.size(), 1u);
 }
 
-TEST(BackendSession, RoomObservationsUpdateTheNearbyRoom) {
+// Two facing walls around the base, 2 m ahead and 2 m behind: a corridor across x.
+std::vector<WallSegment> facingWalls() {
+  std::vector<WallSegment> walls = wallAhead();
+  WallSegment behind = walls[0];
+  behind.normal = Eigen::Vector3d(1.0, 0.0, 0.0);
+  for (auto& e : behind.endpoints) e.x() = -2.0;
+  walls.push_back(behind);
+  return walls;
+}
+
+// The corridor between the walls of facingWalls() as the room segmenter maps it.
+MappedRoom corridorBetween(const SceneGraph& graph, uint32_t id) {
+  MappedRoom room;
+  room.id = id;
+  room.room.kind = RoomKind::kCorridor;
+  for (const auto& [wall_id, wall] : graph.walls) {
+    int& slot = room.room.walls[wall.normal.x() < 0.0 ? 0 : 1];
+    if (slot < 0) slot = static_cast<int>(wall_id);  // the first wall of each facing
+  }
+  room.room.center = Eigen::Vector3d(0.2, 0.0, 0.0);
+  room.room.free_space = {{-1.0, 0.0, 0.0}, {1.0, 0.0, 0.0}};
+  room.room.keyframe_ids = {0, 1};
+  return room;
+}
+
+TEST(BackendSession, MappedRoomsBecomeRoomNodesOfTheOptimisedGraph) {
   BackendSession session{PipelineConfig(), BackendSessionOptions()};
   session.addKeyframe(0, 1.0, Pose3::Identity(), Matrix6d::Zero(), nullptr);
-  session.addKeyframe(1, 2.0, poseFromXyzRpy(1, 0, 0, 0, 0, 0), information(), nullptr);
-  RoomNode a;
-  a.center = Eigen::Vector3d(2.0, 2.0, 0.0);
-  a.keyframe_ids = {0};
-  RoomNode corridor = a;
-  corridor.kind = RoomKind::kCorridor;
-  const auto first = session.addRooms({a, corridor});
-  ASSERT_EQ(first.size(), 2u);
-  EXPECT_NE(first[0], first[1]);  // same place, other kind: another node
-  RoomNode moved = a;
-  moved.center.x() += 0.3;
-  moved.keyframe_ids = {1};
-  EXPECT_EQ(session.addRooms({moved})[0], first[0]);
-  RoomNode far = a;
-  far.center.x() += 5.0;
-  EXPECT_NE(session.addRooms({far})[0], first[0]);
+  MappedRoom no_walls;
+  no_walls.room.walls = {0, 1, -1, -1};
+  EXPECT_FALSE(session.setRoom(no_walls));  // the backend holds no such walls yet
+  session.addWalls(0, facingWalls());
+  session.addKeyframe(1, 2.0, poseFromXyzRpy(0.3, 0, 0, 0, 0, 0), information(), nullptr);
+  ASSERT_EQ(session.sceneGraph().walls.size(), 2u);
+  EXPECT_TRUE(session.setRoom(corridorBetween(session.sceneGraph(), 5)));
+  session.optimize();
   const SceneGraph g = session.sceneGraph();
-  EXPECT_EQ(g.rooms.size(), 3u);
-  EXPECT_EQ(g.rooms.at(first[0]).keyframe_ids, (std::vector<uint32_t>{0, 1}));
-  EXPECT_NEAR(g.rooms.at(first[0]).center.x(), 2.3, 1e-12);
-  EXPECT_EQ(g.keyframes.at(1).room_id, static_cast<int>(first[0]));
+  ASSERT_EQ(g.rooms.size(), 1u);
+  EXPECT_EQ(g.rooms.at(5).kind, RoomKind::kCorridor);
+  EXPECT_EQ(g.rooms.at(5).wall_ids.size(), 2u);
+  // The corridor factor places the centre midway between its walls (x = 0).
+  EXPECT_NEAR(g.rooms.at(5).center.x(), 0.0, 0.05);
+  EXPECT_EQ(g.keyframes.at(1).room_id, 5);
+  EXPECT_EQ(session.journal().at("rooms").size(), 1u);
 }
 
 TEST(BackendSession, SaveWritesProductsAndRecoverRestoresTheGraph) {
@@ -104,12 +124,11 @@ TEST(BackendSession, SaveWritesProductsAndRecoverRestoresTheGraph) {
     for (uint32_t id = 0; id < 4; ++id) {
       session.addKeyframe(id, 1.0 + id, poseFromXyzRpy(0.5 * id, 0, 0, 0, 0, 0),
                           id == 0 ? Matrix6d::Zero() : information(), smallCloud());
-      session.addWalls(id, wallAhead());
+      session.addWalls(id, id == 0 ? facingWalls() : wallAhead());
     }
-    RoomNode room;
-    room.center = Eigen::Vector3d(1.0, 0.0, 0.0);
-    room.keyframe_ids = {2, 3};
-    session.addRooms({room});
+    MappedRoom room = corridorBetween(session.sceneGraph(), 0);
+    room.room.keyframe_ids = {2, 3};
+    ASSERT_TRUE(session.setRoom(room));
     session.optimize();
     session.save(dir, map_config);
     before = session.sceneGraph();

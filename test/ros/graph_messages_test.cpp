@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "tacs_graphs/ros/keyframe_input.h"
+#include "tacs_graphs/ros/message_conversion.h"
 #include "tacs_graphs/ros/scene_graph_markers.h"
 
 namespace tacs {
@@ -107,6 +108,8 @@ TEST(GraphMessages, TraversableGraphRoundTrip) {
     n.label = i == 2 ? TravLabel::kNonGround : TravLabel::kGround;
     n.inferred = i == 1;
     n.clearance = 0.25f * i;
+    n.traversable = i < 2;  // the edge's ends
+    n.safe = i == 1;
     g.nodes.push_back(n);
   }
   g.edges = {{0, 1}};
@@ -121,6 +124,11 @@ TEST(GraphMessages, TraversableGraphRoundTrip) {
   EXPECT_EQ(back.nodes[2].label, TravLabel::kNonGround);
   EXPECT_TRUE(back.nodes[1].inferred);
   EXPECT_FLOAT_EQ(back.nodes[2].clearance, 0.5f);
+  // The flags the traversable map builds free space from.
+  EXPECT_TRUE(back.nodes[0].traversable);
+  EXPECT_FALSE(back.nodes[0].safe);
+  EXPECT_TRUE(back.nodes[1].safe);
+  EXPECT_FALSE(back.nodes[2].traversable);
   ASSERT_EQ(back.edges.size(), 1u);
   EXPECT_EQ(back.edges[0].second, 1u);
 }
@@ -160,16 +168,52 @@ TEST(GraphMessages, SceneGraphRoundTrip) {
   EXPECT_TRUE(back.loops[0].position.isApprox(Eigen::Vector3d(2.0, 1.0, 0.0)));
 }
 
-TEST(GraphMessages, RoomObservationSkipsAbsentWalls) {
-  tacs_graphs::RoomObservation obs;
-  obs.kind = tacs_graphs::RoomObservation::ROOM;
-  obs.wall_ids = {3, -1, 5, 6};
-  obs.center.x = 1.0;
-  obs.keyframe_ids = {1, 2};
-  const RoomNode room = fromRoomObservationMsg(obs);
-  EXPECT_EQ(room.kind, RoomKind::kRoom);
-  EXPECT_EQ(room.wall_ids, (std::vector<uint32_t>{3, 5, 6}));
-  EXPECT_EQ(room.keyframe_ids.size(), 2u);
+TEST(GraphMessages, RoomObservationCarriesTheMappedRoomAndItsMerging) {
+  MappedRoom room;
+  room.id = 4;
+  room.room.kind = RoomKind::kCorridor;
+  room.room.walls = {3, 7, -1, -1};
+  room.room.center = Eigen::Vector3d(1.0, 2.0, 0.1);
+  room.room.axes_yaw = 0.2;
+  room.room.free_space = {{0.5, 2.0, 0.0}, {1.5, 2.0, 0.2}};
+  room.room.keyframe_ids = {1, 2};
+  RoomAssociation association;
+  association.room_id = 4;
+  association.created = false;
+  association.wall_to_wall = {{3, 9}};
+  const tacs_graphs::RoomObservation msg = toRoomObservationMsg(room, association);
+  EXPECT_TRUE(msg.redetected);
+  EXPECT_EQ(msg.wall_ids[2], -1);
+  const MappedRoom back = fromRoomObservationMsg(msg);
+  EXPECT_EQ(back.id, 4u);
+  EXPECT_EQ(back.room.kind, RoomKind::kCorridor);
+  EXPECT_EQ(back.room.walls, room.room.walls);
+  EXPECT_EQ(back.room.wallPairs().size(), 1u);
+  EXPECT_TRUE(back.room.center.isApprox(room.room.center));
+  EXPECT_DOUBLE_EQ(back.room.axes_yaw, 0.2);
+  ASSERT_EQ(back.room.free_space.size(), 2u);
+  EXPECT_DOUBLE_EQ(back.room.free_space[1].z(), 0.2);
+  EXPECT_EQ(back.room.keyframe_ids, room.room.keyframe_ids);
+  EXPECT_EQ(wallToWallPairs(msg), association.wall_to_wall);
+}
+
+TEST(GraphMessages, LoopClosureRoundTripsThroughTheBackendEdge) {
+  LoopClosure loop;
+  loop.from = 2;
+  loop.to = 9;
+  loop.T_from_to = poseFromXyzRpy(1.0, -0.5, 0.0, 0.0, 0.0, 0.3);
+  loop.information = Matrix6d::Identity() * 50.0;
+  loop.score = 0.8;
+  loop.fitness = 0.01;
+  const tacs_graphs::LoopClosure msg = toLoopClosureMsg(loop, 3, "map", 5.0);
+  EXPECT_EQ(msg.room_id, 3);
+  EXPECT_DOUBLE_EQ(msg.fitness, 0.01);
+  EXPECT_TRUE(fromMatrixArray(msg.information).isApprox(loop.information));
+  const LoopEdge edge = fromLoopClosureMsg(msg);
+  EXPECT_EQ(edge.from, 2u);
+  EXPECT_EQ(edge.to, 9u);
+  EXPECT_TRUE(edge.relativePose().isApprox(loop.T_from_to, 1e-9));
+  EXPECT_DOUBLE_EQ(edge.score, 0.8);
 }
 
 TEST(SceneGraphMarkers, DrawsEveryLayer) {

@@ -34,6 +34,39 @@ WallSegment observation(const Eigen::Vector2d& a, const Eigen::Vector2d& b, uint
   return w;
 }
 
+TEST(WallMap, FromSceneGraphKeepsTheBackendsIdsAndPlanes) {
+  SceneGraph graph;
+  WallNode wall;
+  wall.id = 3;
+  wall.normal = Eigen::Vector3d(0.0, -1.0, 0.0);
+  wall.d = 7.0;  // the plane y = 7, seen from below
+  wall.endpoints = {Eigen::Vector2d(9.0, 7.0), Eigen::Vector2d(11.0, 7.0)};
+  wall.z_range = {0.0, 2.5};
+  graph.walls[3] = wall;
+  wall.id = 8;
+  wall.d = 9.0;
+  graph.walls[8] = wall;
+  const WallMap map = wallMapFromSceneGraph(graph, {{3, 4}});
+  ASSERT_EQ(map.landmarks().size(), 2u);
+  const WallLandmark& lm = map.landmarks().at(3);
+  EXPECT_EQ(lm.id, 3u);
+  EXPECT_NEAR(lm.d, 7.0, 1e-12);
+  EXPECT_NEAR(lm.length(), 2.0, 1e-12);
+  EXPECT_DOUBLE_EQ(lm.z_max, 2.5);
+  EXPECT_EQ(lm.observations, 4u);
+  EXPECT_EQ(map.landmarks().at(8).observations, 1u);  // count unknown
+  // The mirrored map still associates: the same wall seen again is landmark 3, a new one gets
+  // an id after the backend's.
+  WallMap copy = map;
+  const Pose3 T = poseFromXyzRpy(10, 5, 0, 0, 0, 90 * kDeg);
+  const auto seen = copy.associate({observation({2, -1}, {2, 1}, 300)}, T);
+  EXPECT_EQ(seen[0].landmark_id, 3u);
+  const auto other = copy.associate({observation({2, -1}, {2, 1}, 300)},
+                                    poseFromXyzRpy(10, -5, 0, 0, 0, -90 * kDeg));
+  EXPECT_TRUE(other[0].created);
+  EXPECT_EQ(other[0].landmark_id, 9u);
+}
+
 TEST(WallMap, ObservationsMoveToTheMapFrameAndGrowOneLandmark) {
   WallMap map;
   // Robot at (10, 5) turned by 90 deg sees a wall 2 m ahead (base x = 2) from y -1..1.

@@ -6,12 +6,13 @@
 //
 // Private parameters:
 //   ~config_ns (/tacs)              pipeline configuration (frames, walls, backend, map_export)
+// Room observations carry mapped rooms (room merging runs in room_segmentation): they go to
+// Backend::setRoom with their wall-to-wall edges (paper eq. 4).
 //   ~output_dir ($ROS_HOME/tacs_graphs)  where ~save and the shutdown write
 //   ~save_on_shutdown (true)
 //   ~recover (false)                replay ~output_dir/backend_journal.json at start
 //   ~map_publish_period_s (5.0)     /tacs/map_points period (only while subscribed)
 //   ~tf_rate_hz (20.0)              map -> odom broadcast rate
-//   ~room_match_distance_m (1.0)    room observations closer than this update the same room
 #pragma once
 
 #include <ros/ros.h>
@@ -53,7 +54,6 @@ class BackendNode {
   bool save(std::string* message);
 
   PipelineConfig config_;
-  MapExportConfig map_config_;
   std::string output_dir_;
   bool save_on_shutdown_ = true;
   std::unique_ptr<BackendSession> session_;

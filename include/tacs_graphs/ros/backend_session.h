@@ -3,9 +3,8 @@
 // id), room nodes from room observations, the saved products of a run and the measurement
 // journal that lets a restarted backend recover the graph.
 //
-// Rooms: the core Backend has no room interface yet, so room observations are associated here to
-// room nodes (same kind, centres closer than room_match_distance_m) and drawn in the scene graph
-// without entering the optimisation.
+// Rooms come already associated (room merging runs in room_segmentation, paper Sec. III-C): each
+// is a mapped room with its id, and goes to Backend::setRoom with its wall-to-wall edges (eq. 4).
 #pragma once
 
 #include <deque>
@@ -23,7 +22,6 @@ namespace tacs {
 
 struct BackendSessionOptions {
   size_t max_pending_keyframes = 300;  // wall/loop messages waiting for this many keyframes at most
-  double room_match_distance_m = 1.0;  // [m] a room observation updates the room this close
 };
 
 class BackendSession {
@@ -40,14 +38,18 @@ class BackendSession {
   Outcome addWalls(uint32_t keyframe_id, const std::vector<WallSegment>& walls);
   /// A loop closure; buffered until both keyframes are known.
   Outcome addLoop(const LoopEdge& edge, const Matrix6d& information);
-  /// Room observations (map frame); returns the room node id of each.
-  std::vector<uint32_t> addRooms(const std::vector<RoomNode>& observations);
+  /// A mapped room (map frame, wall ids of this backend's landmarks) and the wall-to-wall edges
+  /// (mapped wall, observed wall) of its merging. Returns false when the backend holds none of
+  /// its facing wall pairs (nothing stored; the next update of the room tries again).
+  bool setRoom(const MappedRoom& room,
+               const std::vector<std::pair<uint32_t, uint32_t>>& wall_to_wall = {});
+  size_t roomCount() const { return backend_.roomCount(); }
 
   std::optional<OptimizationReport> optimizeIfDue() { return backend_.optimizeIfDue(); }
   OptimizationReport optimize() { return backend_.optimize(); }
 
   /// The optimised scene graph with the room nodes and the keyframes' room ids.
-  SceneGraph sceneGraph() const;
+  SceneGraph sceneGraph() const { return backend_.sceneGraph(); }
   Pose3 mapToOdom() const { return backend_.mapToOdom(); }
   std::map<uint32_t, uint32_t> wallObservationCounts() const;
   size_t keyframeCount() const { return journal_keyframes_.size(); }
@@ -78,8 +80,7 @@ class BackendSession {
   PointCloud::Ptr recovered_map_;
   std::map<uint32_t, std::vector<WallSegment>> pending_walls_;
   std::vector<std::pair<LoopEdge, Matrix6d>> pending_loops_;
-  std::map<uint32_t, RoomNode> rooms_;
-  uint32_t next_room_id_ = 0;
+  std::map<uint32_t, nlohmann::json> journal_rooms_;  // latest version of each room, by id
   uint32_t newest_keyframe_ = 0;
   nlohmann::json journal_keyframes_ = nlohmann::json::array();
   nlohmann::json journal_walls_ = nlohmann::json::array();

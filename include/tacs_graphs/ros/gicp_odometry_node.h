@@ -7,9 +7,8 @@
 //   ~external_odom_topic ("")         nav_msgs/Odometry to use instead of GICP (S-Graphs bags)
 //   ~external_odom_sigma_xyz_m (0.05), ~external_odom_sigma_rot_deg (1.0): its keyframe noise
 //   ~publish_tf (true)                broadcast odom -> base (off when the bag already has it)
-//   ~keyframe_cloud_voxel_m (0.1)     voxel of the keyframe clouds sent to the other nodes; finer
-//                                     than the odometry's own grid because traversability needs
-//                                     several points per tri-grid node (0: odometry's cloud)
+// Keyframe clouds go out at odometry.keyframe_cloud_voxel_m (finer than the odometry's own grid:
+// traversability needs several points per tri-grid node).
 #pragma once
 
 #include <nav_msgs/Odometry.h>
@@ -47,11 +46,10 @@ class GicpOdometryNode {
   void processCloud(const sensor_msgs::PointCloud2::ConstPtr& msg);
   /// T_base_sensor for `sensor_frame`: TF first, then frames.base_to_sensor (cached per frame).
   Pose3 sensorExtrinsic(const std::string& sensor_frame);
-  void publish(const OdometryResult& result, const PointCloud& scan_in_base);
+  void publish(const OdometryResult& result);
 
   PipelineConfig config_;
   bool publish_tf_ = true;
-  double keyframe_cloud_voxel_m_ = 0.1;
   std::unique_ptr<LidarOdometry> gicp_;
   std::unique_ptr<ExternalOdometry> external_;
   std::deque<sensor_msgs::PointCloud2::ConstPtr> waiting_for_odometry_;

@@ -12,8 +12,12 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "tacs_graphs/common/types.h"
+#include "tacs_graphs/loop_closure/loop_detector.h"
+#include "tacs_graphs/rooms/room_map.h"
 #include "tacs_graphs/scene_graph/scene_graph.h"
 #include "tacs_graphs/traversability/traversability_mapper.h"
 #include "tacs_graphs/walls/wall_segment.h"
@@ -34,12 +38,25 @@ WallSegment fromWallObservationMsg(const tacs_graphs::WallObservation& msg);
 tacs_graphs::TraversableGraph toTraversableGraphMsg(const TravGraph& graph, uint32_t keyframe_id,
                                                     const Pose3& T_odom_base,
                                                     const std::string& base_frame, double stamp);
-/// Node flags `traversable` and `safe` are not carried by the message: they come back false.
+/// The traversable graph of a keyframe (base frame), node flags `traversable` and `safe` included:
+/// the TraversableMap builds free space from them.
 TravGraph fromTraversableGraphMsg(const tacs_graphs::TraversableGraph& msg);
 
-/// A room observation as a room node (id 0; the backend assigns ids). Absent walls (-1) are
-/// skipped, the others keep the order x+, x-, y+, y-.
-RoomNode fromRoomObservationMsg(const tacs_graphs::RoomObservation& msg);
+/// A mapped room of the room segmenter and what room merging did with the observation that
+/// updated it now (re-detection, wall-to-wall edges).
+tacs_graphs::RoomObservation toRoomObservationMsg(const MappedRoom& room,
+                                                  const RoomAssociation& association);
+/// The mapped room carried by a room observation (wall categories kept, -1 when absent). Its
+/// overlap cells are not carried: they stay empty.
+MappedRoom fromRoomObservationMsg(const tacs_graphs::RoomObservation& msg);
+/// The wall-to-wall edges (mapped room wall, observed wall) of a room observation; a trailing
+/// unpaired id is ignored.
+std::vector<std::pair<uint32_t, uint32_t>> wallToWallPairs(const tacs_graphs::RoomObservation& msg);
+
+/// A loop closure of the loop detector; `room_id` is the room that triggered it (-1: distance
+/// baseline).
+tacs_graphs::LoopClosure toLoopClosureMsg(const LoopClosure& loop, int room_id,
+                                          const std::string& map_frame, double stamp);
 
 /// The loop edge carried by a loop-closure message (its information goes to the backend apart).
 LoopEdge fromLoopClosureMsg(const tacs_graphs::LoopClosure& msg);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "tacs_graphs/common/types.h"
+#include "tacs_graphs/scene_graph/scene_graph.h"
 #include "tacs_graphs/walls/wall_segment.h"
 
 namespace tacs {
@@ -95,10 +96,21 @@ class WallMap {
 
   const WallAssociationConfig& config() const { return config_; }
 
+  /// Replaces every landmark with `landmarks` (ids kept; ids given later continue after the
+  /// largest). A process that does not own the backend mirrors its wall map this way.
+  void setLandmarks(std::map<uint32_t, WallLandmark> landmarks);
+
  private:
   WallAssociationConfig config_;
   std::map<uint32_t, WallLandmark> landmarks_;
   uint32_t next_id_ = 0;
 };
+
+/// The walls of a scene graph (the backend's optimised landmarks) as a WallMap with the same
+/// landmark ids, so that rooms extracted from it name the backend's walls. `observations` gives
+/// the observation count of each wall (1 when absent); the inlier weight is unknown (0).
+WallMap wallMapFromSceneGraph(const SceneGraph& graph,
+                              const std::map<uint32_t, uint32_t>& observations = {},
+                              const WallAssociationConfig& config = {});
 
 }  // namespace tacs

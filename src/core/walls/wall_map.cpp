@@ -172,4 +172,30 @@ void WallMap::updateLandmarkPlane(uint32_t id, const Eigen::Vector3d& normal, do
   setExtent(&w, ends);
 }
 
+void WallMap::setLandmarks(std::map<uint32_t, WallLandmark> landmarks) {
+  landmarks_ = std::move(landmarks);
+  next_id_ = landmarks_.empty() ? 0 : landmarks_.rbegin()->first + 1;
+}
+
+WallMap wallMapFromSceneGraph(const SceneGraph& graph,
+                              const std::map<uint32_t, uint32_t>& observations,
+                              const WallAssociationConfig& config) {
+  std::map<uint32_t, WallLandmark> landmarks;
+  for (const auto& [id, wall] : graph.walls) {
+    WallLandmark& lm = landmarks[id];
+    lm.id = id;
+    lm.normal = wall.normal.normalized();
+    lm.d = wall.d;
+    lm.endpoints[0] = wall.endpoints[0];
+    lm.endpoints[1] = wall.endpoints[1];
+    lm.z_min = wall.z_range[0];
+    lm.z_max = wall.z_range[1];
+    const auto count = observations.find(id);
+    lm.observations = count == observations.end() ? 1 : std::max<uint32_t>(1, count->second);
+  }
+  WallMap map(config);
+  map.setLandmarks(std::move(landmarks));
+  return map;
+}
+
 }  // namespace tacs

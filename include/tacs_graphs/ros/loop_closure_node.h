@@ -1,0 +1,63 @@
+// The loop_closure node: keyframes (clouds), the backend's scene graph (pose estimates) and room
+// observations -> LoopDetector -> /tacs/loop_closures.
+//
+// loop_closure.method "cosg" (paper Sec. III-D, CoSG-LCD): a room observation marked as a
+// re-detection searches that room's keyframes for a loop with the observation's query keyframe
+// (a request waits for the query keyframe's cloud if it is not in yet). "distance" (baseline):
+// every new keyframe searches the keyframes within the distance threshold. Pose estimates follow
+// the scene graph (LoopDetector::updatePoses); keyframes not yet optimised are placed with the
+// latest map -> odom correction. At shutdown the node logs the detection totals and t_LD.
+//
+// Parameters: the pipeline configuration under ~config_ns (default /tacs; sections frames,
+// odometry (its voxel grid for the stored clouds) and loop_closure).
+#pragma once
+
+#include <ros/ros.h>
+#include <tacs_graphs/Keyframe.h>
+#include <tacs_graphs/RoomObservations.h>
+#include <tacs_graphs/SceneGraph.h>
+
+#include <deque>
+#include <vector>
+
+#include "tacs_graphs/loop_closure/loop_detector.h"
+#include "tacs_graphs/pipeline/pipeline_config.h"
+#include "tacs_graphs/ros/map_pose_estimate.h"
+#include "tacs_graphs/ros/warn_once.h"
+
+namespace tacs {
+
+class LoopClosureNode {
+ public:
+  /// Throws ConfigError on a bad configuration.
+  LoopClosureNode(ros::NodeHandle& nh, ros::NodeHandle& pnh);
+
+  /// Logs the detection totals (t_LD).
+  void shutdown();
+
+ private:
+  /// A room re-detection waiting for its query keyframe's cloud.
+  struct RoomRequest {
+    uint32_t query = 0;
+    int room_id = -1;
+    std::vector<uint32_t> room_keyframes;
+  };
+
+  void keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg);
+  void sceneGraphCallback(const tacs_graphs::SceneGraph::ConstPtr& msg);
+  void roomsCallback(const tacs_graphs::RoomObservations::ConstPtr& msg);
+  void detectInRoom(const RoomRequest& request);
+  void publish(const LoopDetection& detection, int room_id);
+
+  PipelineConfig config_;
+  LoopDetector detector_;
+  MapPoseEstimate poses_;
+  std::deque<RoomRequest> waiting_;
+  ros::Subscriber keyframe_sub_, scene_graph_sub_, rooms_sub_;
+  ros::Publisher loop_pub_;
+  WarnOnce warnings_;
+  double latest_stamp_ = 0.0;
+  size_t published_ = 0;
+};
+
+}  // namespace tacs

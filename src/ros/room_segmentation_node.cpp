@@ -1,0 +1,92 @@
+#include "tacs_graphs/ros/room_segmentation_node.h"
+
+#include <tacs_graphs/RoomObservations.h>
+
+#include <algorithm>
+
+#include "tacs_graphs/ros/graph_messages.h"
+#include "tacs_graphs/ros/keyframe_input.h"
+#include "tacs_graphs/ros/message_conversion.h"
+#include "tacs_graphs/ros/params.h"
+
+namespace tacs {
+
+RoomSegmentationNode::RoomSegmentationNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
+    : config_(loadPipelineConfigFromRos(nh, pnh.param<std::string>("config_ns", "/tacs"))) {
+  RoomSegmentationOptions options;
+  options.max_wait_keyframes =
+      static_cast<uint32_t>(std::max(0, pnh.param("max_wait_keyframes", 5)));
+  options.repose_distance_m = pnh.param("repose_distance_m", options.repose_distance_m);
+  options.repose_angle_deg = pnh.param("repose_angle_deg", options.repose_angle_deg);
+  session_ = std::make_unique<RoomSegmentationSession>(config_, options);
+
+  rooms_pub_ = nh.advertise<tacs_graphs::RoomObservations>("/tacs/room_observations", 100);
+  const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
+  if (session_->needsClouds()) {
+    keyframe_sub_ =
+        nh.subscribe("/tacs/keyframe", 1000, &RoomSegmentationNode::keyframeCallback, this, hints);
+  } else {
+    graph_sub_ = nh.subscribe("/tacs/traversable_graph", 1000, &RoomSegmentationNode::graphCallback,
+                              this, hints);
+  }
+  scene_graph_sub_ =
+      nh.subscribe("/tacs/scene_graph", 10, &RoomSegmentationNode::sceneGraphCallback, this, hints);
+  ROS_INFO_STREAM("Room segmentation (" << config_.rooms.method << ") ready");
+}
+
+void RoomSegmentationNode::graphCallback(const tacs_graphs::TraversableGraph::ConstPtr& msg) {
+  const Pose3 T_odom_base = fromPoseMsg(msg->odom_pose);
+  if (!T_odom_base.matrix().allFinite()) {
+    warnings_.warn("traversable graph", "non-finite odometry pose, skipped");
+    return;
+  }
+  session_->addGraph(msg->keyframe_id, msg->header.stamp.toSec(), T_odom_base,
+                     fromTraversableGraphMsg(*msg));
+  processReady();
+}
+
+void RoomSegmentationNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg) {
+  const KeyframeInput kf = fromKeyframeMsg(*msg);
+  if (!kf.ok) {
+    warnings_.warn("keyframe", WarnOnce::reasonKey(kf.error), kf.error + ", skipped");
+    return;
+  }
+  session_->addCloud(kf.id, kf.stamp, kf.T_odom_base, kf.cloud);
+  processReady();
+}
+
+void RoomSegmentationNode::sceneGraphCallback(const tacs_graphs::SceneGraph::ConstPtr& msg) {
+  std::map<uint32_t, uint32_t> observations;
+  for (const auto& w : msg->walls) observations[w.id] = w.observation_count;
+  session_->setSceneGraph(fromSceneGraphMsg(*msg), observations);
+  processReady();
+}
+
+void RoomSegmentationNode::processReady() {
+  for (const RoomUpdate& update : session_->processReady()) publish(update);
+}
+
+void RoomSegmentationNode::publish(const RoomUpdate& update) {
+  if (update.rooms.empty()) return;
+  tacs_graphs::RoomObservations msg;
+  msg.header.stamp.fromSec(update.stamp);
+  msg.header.frame_id = config_.frames.map_frame;
+  msg.keyframe_id = update.keyframe_id;
+  for (const auto& [room, association] : update.rooms) {
+    msg.rooms.push_back(toRoomObservationMsg(room, association));
+    if (!association.created) ++redetections_;
+  }
+  published_ += update.rooms.size();
+  rooms_pub_.publish(msg);
+}
+
+void RoomSegmentationNode::shutdown() {
+  publish(session_->finish());
+  ROS_INFO_STREAM("room_segmentation: " << session_->keyframesSegmented() << " keyframes, "
+                                        << session_->segmenter().rooms().size() << " rooms, "
+                                        << published_ << " room updates (" << redetections_
+                                        << " re-detections), " << session_->reposes()
+                                        << " map re-posings, " << warnings_.total() << " warnings");
+}
+
+}  // namespace tacs
