@@ -48,7 +48,7 @@ struct WorldScore {
 // A traversable node over no floor of its level; "deep" when the floor is more than `margin`
 // away in each of 8 directions (a node whose triangle only straddles a floor edge is not deep).
 void countVoidNodes(const tacs::sim::World& world, const tacs::TravGraph& graph, double margin,
-                    WorldScore* score) {
+                    bool verbose, WorldScore* score) {
   constexpr double kLevelTolerance = 0.3;  // [m] a node stands on floors this close in height
   for (const auto& node : graph.nodes) {
     if (!node.traversable) continue;
@@ -63,6 +63,11 @@ void countVoidNodes(const tacs::sim::World& world, const tacs::TravGraph& graph,
       deep = !isGroundPoint(world, q, kLevelTolerance);
     }
     score->deep_void_nodes += deep;
+    if (deep && verbose) {
+      std::printf("|   traversable node over the void at (%.2f, %.2f, %.2f)%s |\n",
+                  node.position.x(), node.position.y(), node.position.z(),
+                  node.inferred ? ", inferred" : "");
+    }
   }
 }
 
@@ -123,7 +128,7 @@ WorldScore runWorld(const std::string& path, const tacs::bench::WorldsArgs& args
       if (!found) score.missed_by_range[r < 3 ? 0 : r < 6 ? 1 : r < 10 ? 2 : 3]++;
     }
   }
-  countVoidNodes(world, map.graph(), 0.2, &score);
+  countVoidNodes(world, map.graph(), 0.2, args.verbose, &score);
   return score;
 }
 
