@@ -206,15 +206,21 @@ WorldScore runWorld(const std::string& path, const tacs::bench::WorldsArgs& args
   std::vector<int> holders(faces.size(), 0);
   for (const auto& [id, lm] : walls.landmarks()) {
     ++score.landmarks;
-    bool any = false, on_face = false;
+    bool any = false;
+    int on_faces = 0;
     for (size_t k = 0; k < faces.size(); ++k) {
       if (!matches(lm.normal, lm.endpoints, faces[k])) continue;
       any = true;
       holders[k] += ever_visible[k];
-      on_face = on_face || ever_visible[k];
+      on_faces += ever_visible[k];
+    }
+    if (on_faces >= 2 && args.verbose) {
+      std::printf("|   landmark %u spans %d faces: (%.2f, %.2f)-(%.2f, %.2f) |\n", id, on_faces,
+                  lm.endpoints[0].x(), lm.endpoints[0].y(), lm.endpoints[1].x(),
+                  lm.endpoints[1].y());
     }
     score.stray += !any;
-    score.on_faces += on_face;
+    score.on_faces += on_faces > 0;
     if (!any && args.verbose) {
       std::printf(
           "|   stray landmark %u: n (%.2f, %.2f), %.2f m long, (%.2f, %.2f)-(%.2f, %.2f) |\n", id,
