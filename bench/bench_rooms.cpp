@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "bench_common.h"
+#include "bench_worlds_common.h"
 #include "tacs_graphs/eval/room_metrics.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
 #include "tacs_graphs/rooms/room_segmenter.h"
@@ -200,21 +201,6 @@ std::vector<std::vector<tacs::RoomNode>> runWorld(const std::string& path, const
   return {runs[0].rooms, runs[1].rooms};
 }
 
-std::string findWorldsDir() {
-  std::vector<fs::path> starts = {fs::current_path()};
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) starts.push_back(exe.parent_path());
-  for (const auto& start : starts) {
-    for (fs::path d = start; !d.empty() && d != d.root_path(); d = d.parent_path()) {
-      for (const fs::path& c : {d / "worlds", d / "src" / "tacs_graphs" / "worlds"}) {
-        if (fs::exists(c / "smoke.json")) return c.string();
-      }
-    }
-  }
-  return "";
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -244,7 +230,7 @@ int main(int argc, char** argv) {
       return a == "--help" || a == "-h" ? 0 : 2;
     }
   }
-  if (args.worlds_dir.empty()) args.worlds_dir = findWorldsDir();
+  if (args.worlds_dir.empty()) args.worlds_dir = tacs::bench::findWorldsDir();
   std::vector<std::string> paths;
   if (args.worlds.empty()) {
     for (const auto& e : fs::directory_iterator(args.worlds_dir)) {
