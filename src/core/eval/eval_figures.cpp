@@ -51,7 +51,7 @@ std::string drawAteVsLoopTime(const std::string& out_dir, const std::vector<Eval
     canvas.drawLine({x, 0}, {x, -0.1}, black, 2.0);
     canvas.drawText({x - 0.2, -0.2}, label(x / sx, 2), black, 2);
     canvas.drawLine({0, y}, {-0.1, y}, black, 2.0);
-    canvas.drawText({-1.4, y + 0.1}, label(y / sy, 2), black, 2);
+    canvas.drawText({-1.45, y + 0.1}, label(y / sy, 3), black, 2);
   }
   canvas.drawText({4.0, -0.7}, "t_LD (s)", black, 3);
   canvas.drawText({0.2, 6.9}, "ATE (m)", black, 3);
