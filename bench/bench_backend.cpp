@@ -19,6 +19,7 @@ struct Args {
   int keyframes = 1000;
   int walls = 300;
   int observations = 8;
+  int threads = 1;  // Ceres threads (the live backend node leaves the other core to odometry)
 };
 
 Args parse(int argc, char** argv) {
@@ -29,6 +30,7 @@ Args parse(int argc, char** argv) {
     if (k == "--keyframes") a.keyframes = v;
     if (k == "--walls") a.walls = v;
     if (k == "--observations-per-keyframe") a.observations = v;
+    if (k == "--threads") a.threads = v;
   }
   return a;
 }
@@ -57,6 +59,7 @@ int main(int argc, char** argv) {
 
   tacs::BackendConfig config;
   config.max_iterations = 50;
+  config.num_threads = args.threads;
   tacs::FactorGraph graph(config);
   Pose3 odom = truth[0];
   const Eigen::Matrix<double, 6, 6> info = Eigen::Matrix<double, 6, 6>::Identity() * 400.0;
