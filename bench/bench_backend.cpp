@@ -20,12 +20,17 @@ struct Args {
   int walls = 300;
   int observations = 8;
   int threads = 1;  // Ceres threads (the live backend node leaves the other core to odometry)
+  std::string trust_region = "levenberg_marquardt";
 };
 
 Args parse(int argc, char** argv) {
   Args a;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string k = argv[i];
+    if (k == "--trust-region") {
+      a.trust_region = argv[i + 1];
+      continue;
+    }
     const int v = std::stoi(argv[i + 1]);
     if (k == "--keyframes") a.keyframes = v;
     if (k == "--walls") a.walls = v;
@@ -60,6 +65,7 @@ int main(int argc, char** argv) {
   tacs::BackendConfig config;
   config.max_iterations = 50;
   config.num_threads = args.threads;
+  config.trust_region = args.trust_region;
   tacs::FactorGraph graph(config);
   Pose3 odom = truth[0];
   const Eigen::Matrix<double, 6, 6> info = Eigen::Matrix<double, 6, 6>::Identity() * 400.0;

@@ -54,10 +54,15 @@ void addOdometry(FactorGraph* g, const std::vector<Pose3>& odom) {
   }
 }
 
-TEST(FactorGraph, LoopClosureRemovesDrift) {
+/// Both trust-region strategies remove the drift of a closed rectangle loop.
+class FactorGraphTrustRegion : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(FactorGraphTrustRegion, LoopClosureRemovesDrift) {
   const auto truth = rectangleLoop();
   const auto odom = driftingOdometry(truth);
-  FactorGraph g{BackendConfig()};
+  BackendConfig config;
+  config.trust_region = GetParam();
+  FactorGraph g{config};
   addOdometry(&g, odom);
   const double before = maxError(g, truth);
   // The robot is back at the start: the loop edge measures the true relative pose.
@@ -69,6 +74,15 @@ TEST(FactorGraph, LoopClosureRemovesDrift) {
   const double after = maxError(g, truth);
   EXPECT_GT(before, 1.0);
   EXPECT_LT(after, 0.5 * before);
+}
+
+INSTANTIATE_TEST_SUITE_P(Strategies, FactorGraphTrustRegion,
+                         ::testing::Values("levenberg_marquardt", "dogleg"));
+
+TEST(FactorGraph, UnknownTrustRegionIsAConfigError) {
+  BackendConfig config;
+  config.trust_region = "gauss_newton";
+  EXPECT_THROW(config.validate(), ConfigError);
 }
 
 TEST(FactorGraph, WallObservationsCorrectHeadingDrift) {

@@ -8,6 +8,7 @@
 #include <array>
 #include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "tacs_graphs/common/types.h"
@@ -23,8 +24,11 @@ struct BackendConfig {
   double corridor_anchor_sigma = 1.0;    // corridor centre along its walls [m]
   double wall_merge_sigma_theta = 0.02;  // wall-to-wall edge, angle [rad]
   double wall_merge_sigma_d = 0.05;      // wall-to-wall edge, distance [m]
-  int max_iterations = 20;               // Levenberg-Marquardt iterations per optimisation
-  int num_threads = 1;                   // Ceres threads (the other core runs the front end)
+  int max_iterations = 20;               // trust-region iterations per optimisation
+  // Trust-region strategy: "levenberg_marquardt" or "dogleg" (Powell's dogleg; on large pose
+  // graphs it often needs fewer iterations, see bench_backend --trust-region).
+  std::string trust_region = "levenberg_marquardt";
+  int num_threads = 1;               // Ceres threads (the other core runs the front end)
   int optimize_every_keyframes = 1;  // optimise after this many new keyframes (and on each loop)
 
   template <class V>
@@ -38,6 +42,7 @@ struct BackendConfig {
     v("wall_merge_sigma_theta", wall_merge_sigma_theta);
     v("wall_merge_sigma_d", wall_merge_sigma_d);
     v("max_iterations", max_iterations);
+    v("trust_region", trust_region);
     v("num_threads", num_threads);
     v("optimize_every_keyframes", optimize_every_keyframes);
   }

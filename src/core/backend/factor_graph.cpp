@@ -22,6 +22,8 @@ void BackendConfig::validate() const {
     requireConfig(value > 0, std::string("backend.") + name, "must be > 0");
   }
   requireConfig(max_iterations >= 1, "backend.max_iterations", "must be >= 1");
+  requireConfig(trust_region == "levenberg_marquardt" || trust_region == "dogleg",
+                "backend.trust_region", "must be levenberg_marquardt or dogleg");
   requireConfig(num_threads >= 1, "backend.num_threads", "must be >= 1");
   requireConfig(optimize_every_keyframes >= 1, "backend.optimize_every_keyframes", "must be >= 1");
 }
@@ -169,6 +171,7 @@ OptimizationReport FactorGraph::optimize() {
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   options.max_num_iterations = config_.max_iterations;
+  if (config_.trust_region == "dogleg") options.trust_region_strategy_type = ceres::DOGLEG;
   options.num_threads = config_.num_threads;
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
