@@ -123,6 +123,20 @@ TEST(RoomsMerging, FarAcrossOrDisjointOrPerpendicularStaysApart) {
   EXPECT_EQ(map.rooms().size(), 4u);
 }
 
+TEST(RoomsMerging, NeighboursInARowSharingFrontAndBackWallsStayApart) {
+  // Offices side by side share the corridor wall and the back wall (one landmark each, across
+  // the doors). A partial view of the second office bounded by those two walls only must not
+  // join the first office: their free space never touches.
+  RoomMap map;
+  RoomObservation office = xCorridor(0, 4, 0, 4, 1, 2);
+  office.kind = RoomKind::kRoom;
+  office.walls = {10, 11, 1, 2};
+  const auto first = map.addObservation(office, kNoWalls);
+  const auto second = map.addObservation(xCorridor(4.4, 8, 0, 4, 1, 2), kNoWalls);
+  EXPECT_TRUE(second.created);
+  EXPECT_NE(second.room_id, first.room_id);
+}
+
 TEST(RoomsMerging, CorridorReDetectedAsRoomBecomesARoom) {
   RoomMap map;
   const auto first = map.addObservation(yCorridor(0, 4, 0, 4, 1, 2), kNoWalls);

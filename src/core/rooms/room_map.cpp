@@ -164,8 +164,17 @@ RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
       return same(lo) && same(hi);
     };
     constexpr double kTouching = 0.05;  // share of the smaller view's cells [-]
+    // Views that are not both corridors must bound each other on both axes to merge apart:
+    // rooms in a row share their front and back walls (one landmark across the doors), so one
+    // shared pair alone would join neighbours that never touch.
+    const bool corridors =
+        m.room.kind == RoomKind::kCorridor && observation.kind == RoomKind::kCorridor;
+    const bool apart_ok = corridors ||
+                          (m.room.hasXPair() && m.room.hasYPair() && observation.hasXPair() &&
+                           observation.hasYPair()) ||
+                          overlap >= kTouching;
     const bool same_walls =
-        (same_pair(0, 1, false) && same_pair(2, 3, false)) ||
+        (apart_ok && same_pair(0, 1, false) && same_pair(2, 3, false)) ||
         (overlap >= kTouching && same_pair(0, 1, true) && same_pair(2, 3, true));
     // A view lying almost entirely inside the other is the same room whatever walls the
     // smaller one picked (a first, partial view of a room).
