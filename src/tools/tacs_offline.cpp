@@ -236,13 +236,13 @@ int run(const Options& o) {
   tacs::writeRunFolder(o.out, pipeline, {o.bag.empty() ? o.world : o.bag, wall_s});
   source->writeGroundTruth(o.out);
   const tacs::PipelineStats& stats = pipeline.stats();
+  const tacs::SceneGraph graph = pipeline.sceneGraph();
   std::cout << std::fixed << std::setprecision(2) << "[tacs_offline] " << stats.scans << " scans ("
             << stats.rejected_scans << " rejected), " << stats.keyframes << " keyframes, "
-            << pipeline.sceneGraph().walls.size() << " walls, "
-            << pipeline.sceneGraph().rooms.size() << " rooms, " << wall_s << " s ("
-            << (wall_s > 0 ? stats.scans / wall_s : 0.0) << " scans/s), t_FGO "
-            << pipeline.fgoSeconds() << " s, loops " << pipeline.sceneGraph().loops.size()
-            << ", t_LD " << pipeline.ldSeconds() << " s -> " << o.out << "\n";
+            << graph.walls.size() << " walls, " << graph.rooms.size() << " rooms, " << wall_s
+            << " s (" << (wall_s > 0 ? stats.scans / wall_s : 0.0) << " scans/s), t_FGO "
+            << pipeline.fgoSeconds() << " s, loops " << graph.loops.size() << ", t_LD "
+            << pipeline.ldSeconds() << " s -> " << o.out << "\n";
   printAccuracy(pipeline, source->groundTruth());
   return stats.scans > stats.rejected_scans ? 0 : 1;
 }

@@ -91,7 +91,8 @@ class Pipeline {
   RoomSegmenter room_segmenter_;
   LoopDetector loop_detector_;
   Backend backend_;
-  std::vector<uint32_t> keyframe_ids_;
+  std::vector<uint32_t> keyframe_ids_;  // in arrival (= stamp) order
+  std::vector<double> keyframe_stamps_;
   bool loop_since_pose_update_ = false;
   PipelineStats stats_;
   Trajectory odometry_;

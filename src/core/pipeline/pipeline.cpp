@@ -1,7 +1,5 @@
 #include "tacs_graphs/pipeline/pipeline.h"
 
-#include <algorithm>
-
 #include "tacs_graphs/odometry/preprocess.h"
 
 namespace tacs {
@@ -46,6 +44,7 @@ void Pipeline::processKeyframe(const OdometryResult& odom, ScanOutcome* outcome)
   outcome->keyframe_id = id;
   ++stats_.keyframes;
   keyframe_ids_.push_back(id);
+  keyframe_stamps_.push_back(odom.stamp);
   const PointCloud& cloud = *odom.keyframe_cloud;
   // Kept for the map, the OctoMap and loop closure at the odometry's grid: a long run keeps
   // thousands of keyframes.
@@ -139,12 +138,12 @@ void Pipeline::finish() {
 }
 
 Trajectory Pipeline::keyframeTrajectory() const {
+  // Keyframes arrive in stamp order (the odometry rejects stamps that go back).
   Trajectory trajectory;
-  for (const auto& [id, kf] : backend_.sceneGraph().keyframes) {
-    trajectory.push_back({kf.stamp, kf.pose()});
+  trajectory.reserve(keyframe_ids_.size());
+  for (size_t k = 0; k < keyframe_ids_.size(); ++k) {
+    trajectory.push_back({keyframe_stamps_[k], backend_.keyframePose(keyframe_ids_[k])});
   }
-  std::sort(trajectory.begin(), trajectory.end(),
-            [](const StampedPose& a, const StampedPose& b) { return a.stamp < b.stamp; });
   return trajectory;
 }
 
