@@ -20,7 +20,7 @@ struct Args {
   int walls = 300;
   int observations = 8;
   int threads = 1;  // Ceres threads (the live backend node leaves the other core to odometry)
-  std::string trust_region = "levenberg_marquardt";
+  std::string trust_region = tacs::BackendConfig().trust_region;  // the shipped default
 };
 
 Args parse(int argc, char** argv) {

@@ -84,7 +84,7 @@ TEST(RoomsMerging, DisjointPiecesBetweenTheSameWallsAreOneCorridor) {
   EXPECT_EQ(second.room_id, first.room_id);
 }
 
-TEST(RoomsMerging, PiecesOfOneWallPlaneMergeOnlyWhenTheViewsTouch) {
+TEST(RoomsMerging, PiecesOfOneWallPlaneMergeWhenTheViewsTouchOrNoWallSeparatesThem) {
   // y walls at y = 0 (facing +y) and y = 4 (facing -y), each in two landmarks (x < 5, x > 5).
   const auto yWall = [](uint32_t id, double y, int sign, double x0, double x1) {
     WallLandmark w;
@@ -99,10 +99,19 @@ TEST(RoomsMerging, PiecesOfOneWallPlaneMergeOnlyWhenTheViewsTouch) {
                                                   {2, yWall(2, 4, -1, 0, 5)},
                                                   {3, yWall(3, 0, 1, 5.5, 10)},
                                                   {4, yWall(4, 4, -1, 5.5, 10)}};
-  // Two rooms in a row: the same wall planes, no shared free space.
+  // Two rooms in a row: the same wall planes, no shared free space, a partition wall at x = 5.3.
+  auto with_partition = walls;
+  with_partition[5] = xWall(5, 5.3, -1);
   RoomMap row;
-  row.addObservation(xCorridor(0, 5, 0.4, 3.6, 1, 2), walls);
-  EXPECT_TRUE(row.addObservation(xCorridor(5.6, 10, 0.4, 3.6, 3, 4), walls).created);
+  row.addObservation(xCorridor(0, 5, 0.4, 3.6, 1, 2), with_partition);
+  EXPECT_TRUE(row.addObservation(xCorridor(5.6, 10, 0.4, 3.6, 3, 4), with_partition).created);
+  // Without a wall between them they are one corridor walked in two pieces (its walls broken
+  // by a doorway on either side): merged, the wall pieces tied.
+  RoomMap corridor;
+  corridor.addObservation(xCorridor(0, 5, 0.4, 3.6, 1, 2), walls);
+  const auto continued = corridor.addObservation(xCorridor(5.6, 10, 0.4, 3.6, 3, 4), walls);
+  EXPECT_FALSE(continued.created);
+  EXPECT_EQ(continued.wall_to_wall.size(), 2u);
   // Two views of one hall that touch: merged, the wall pieces tied.
   RoomMap hall;
   hall.addObservation(xCorridor(0, 5, 0.4, 3.6, 1, 2), walls);

@@ -115,6 +115,30 @@ TEST(WallExtraction, TwoRoomsWithADoorGiveTwoSegmentsOnTheDoorWall) {
   EXPECT_NEAR(covered, 3.0, 0.3);  // 1 m + 2 m, the door is left out
 }
 
+TEST(WallExtraction, FloorAndCeilingLinesDoNotBridgeADoorway) {
+  // A wall y = 3 with a 1.2 m doorway at x 0..1.2, and strips of floor and ceiling along its
+  // line (as a LiDAR sees them through the doorway when the rest of the floor is out of view):
+  // those strips are inliers of the wall's plane and would join the pieces on both sides.
+  test::SyntheticScene scene;
+  scene.wall({-6, 3}, {0, 3}, -0.8, 2.0);
+  scene.wall({1.2, 3}, {7, 3}, -0.8, 2.0);
+  scene.slab(-6, 7, 2.95, 3.05, -0.8);
+  scene.slab(-6, 7, 2.95, 3.05, 2.0);
+  WallExtractionConfig cfg;
+  const auto pieces = matching(WallExtractor(cfg).extract(scene.cloud).walls, {0, -1, 0}, 3.0);
+  ASSERT_EQ(pieces.size(), 2u);
+  for (const auto& w : pieces) {
+    const double near_end = w.midpoint().x() < 0.6
+                                ? std::max(w.endpoints[0].x(), w.endpoints[1].x())
+                                : std::min(w.endpoints[0].x(), w.endpoints[1].x());
+    EXPECT_NEAR(near_end, w.midpoint().x() < 0.6 ? 0.0 : 1.2, 0.1);  // the doorway stays open
+  }
+  cfg.edge_band = 0.0;  // every inlier bridges: one segment across the doorway
+  const auto joined = matching(WallExtractor(cfg).extract(scene.cloud).walls, {0, -1, 0}, 3.0);
+  ASSERT_EQ(joined.size(), 1u);
+  EXPECT_NEAR(joined[0].length(), 13.0, 0.3);
+}
+
 TEST(WallExtraction, RotatedRoomGivesRotatedNormals) {
   auto scene = boxRoomScene();
   const double yaw = 30 * kDeg;

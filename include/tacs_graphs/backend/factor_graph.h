@@ -27,7 +27,7 @@ struct BackendConfig {
   int max_iterations = 20;               // trust-region iterations per optimisation
   // Trust-region strategy: "levenberg_marquardt" or "dogleg" (Powell's dogleg; on large pose
   // graphs it often needs fewer iterations, see bench_backend --trust-region).
-  std::string trust_region = "levenberg_marquardt";
+  std::string trust_region = "dogleg";
   int num_threads = 1;               // Ceres threads (the other core runs the front end)
   int optimize_every_keyframes = 1;  // optimise after this many new keyframes (and on each loop)
 

@@ -4,8 +4,9 @@
 // free spaces overlap (share of the smaller one's cells at `overlap_cell`) and their centres are
 // close along the axes orthogonal to the walls both define (d(x) = |x_k - x~_k| for two
 // y-direction corridors, both axes for two four-wall rooms). Observations bounded by the same
-// walls (one landmark, or landmarks of one plane) on every axis both define also merge without
-// overlap (a long corridor or a hall walked in separate pieces), and so does a view lying almost entirely inside a mapped room
+// walls (one landmark, or landmarks of one plane when the views touch or are corridors with no
+// wall between them) on every axis both define also merge without overlap (a long corridor or a
+// hall walked in separate pieces), and so does a view lying almost entirely inside a mapped room
 // (`nested_overlap`, a first partial view). Otherwise perpendicular corridors, which share no
 // axis, never merge. The mapped room takes over the observation's free space and
 // keyframes, adopts a wall pair it lacked (a corridor re-detected as a four-wall room becomes a

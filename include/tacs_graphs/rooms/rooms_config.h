@@ -64,6 +64,9 @@ struct VoxelFreeSpaceConfig {
   double min_cluster_area = 1.5;   // smaller clusters are dropped [m^2]
   int update_every_keyframes = 4;  // clusters are recomputed every this many keyframes [-]
   double merge_distance = 1.0;     // rooms closer than this (centre, 2D) are one room [m]
+  /// How a new room joins the map: "center_distance" (S-Graphs+, `merge_distance`) or "module"
+  /// (the room merging module of Sec. III-C, `rooms.merging`: the paper's baseline + RM).
+  std::string merging = "center_distance";
 
   template <class V>
   void visit(V& v) {
@@ -77,6 +80,7 @@ struct VoxelFreeSpaceConfig {
     v("min_cluster_area", min_cluster_area);
     v("update_every_keyframes", update_every_keyframes);
     v("merge_distance", merge_distance);
+    v("merging", merging);
   }
   void validate() const;
 };

@@ -46,6 +46,10 @@ struct WallExtractionConfig {
   double horizontal_tolerance_deg = 10.0;
   /// Inliers of a vertical plane further apart than this along the wall start a new segment (m).
   double max_gap = 0.5;
+  /// Inliers within this height of the plane's lowest or highest inlier (where the floor and the
+  /// ceiling cross the wall's plane) neither bridge a gap nor extend a segment: through a doorway
+  /// they would join the walls on both sides (m); 0 treats them like the others.
+  double edge_band = 0.15;
   /// A wall segment needs at least this many inliers...
   int min_wall_inliers = 60;
   /// ...this length (m)...
@@ -75,6 +79,7 @@ struct WallExtractionConfig {
     v("vertical_tolerance_deg", vertical_tolerance_deg);
     v("horizontal_tolerance_deg", horizontal_tolerance_deg);
     v("max_gap", max_gap);
+    v("edge_band", edge_band);
     v("min_wall_inliers", min_wall_inliers);
     v("min_wall_length", min_wall_length);
     v("min_wall_height", min_wall_height);

@@ -31,6 +31,23 @@ void unionIds(std::vector<uint32_t>* into, const std::vector<uint32_t>& add) {
   into->erase(std::unique(into->begin(), into->end()), into->end());
 }
 
+// True when the segment a-b crosses a mapped wall (a wall stands between two views).
+bool wallBetween(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                 const std::map<uint32_t, WallLandmark>& landmarks) {
+  const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+    return u.x() * v.y() - u.y() * v.x();
+  };
+  const Eigen::Vector2d r = b - a;
+  for (const auto& [id, w] : landmarks) {
+    const Eigen::Vector2d p = w.endpoints[0], s = w.endpoints[1] - w.endpoints[0];
+    const double denom = cross(r, s);
+    if (std::abs(denom) < 1e-9) continue;  // parallel: a bounding wall, not a separating one
+    const double t = cross(p - a, s) / denom, u = cross(p - a, r) / denom;
+    if (t > 0.0 && t < 1.0 && u >= 0.0 && u <= 1.0) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 RoomNode MappedRoom::toNode() const {
@@ -173,9 +190,14 @@ RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
                           (m.room.hasXPair() && m.room.hasYPair() && observation.hasXPair() &&
                            observation.hasYPair()) ||
                           overlap >= kTouching;
-    const bool same_walls =
-        (apart_ok && same_pair(0, 1, false) && same_pair(2, 3, false)) ||
-        (overlap >= kTouching && same_pair(0, 1, true) && same_pair(2, 3, true));
+    // Two corridor views between landmarks of the same wall planes with no wall standing between
+    // them are one corridor walked in pieces (its walls broken by doors); rooms in a row, which
+    // also share such planes, have their partition wall between them.
+    const bool corridor_continues =
+        corridors && !wallBetween(m.room.center.head<2>(), observation.center.head<2>(), landmarks);
+    const bool same_walls = (apart_ok && same_pair(0, 1, false) && same_pair(2, 3, false)) ||
+                            ((overlap >= kTouching || corridor_continues) &&
+                             same_pair(0, 1, true) && same_pair(2, 3, true));
     // A view lying almost entirely inside the other is the same room whatever walls the
     // smaller one picked (a first, partial view of a room).
     const bool nested = overlap >= config_.nested_overlap;

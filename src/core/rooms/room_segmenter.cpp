@@ -39,7 +39,9 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
     return;
   }
   extracted.room.keyframe_ids = std::move(keyframe_ids);
-  const RoomAssociation a = config_.method == "voxel"
+  const bool by_center_distance =
+      config_.method == "voxel" && config_.voxel.merging == "center_distance";
+  const RoomAssociation a = by_center_distance
                                 ? room_map_.addByCenterDistance(extracted.room, walls.landmarks(),
                                                                 config_.voxel.merge_distance)
                                 : room_map_.addObservation(extracted.room, walls.landmarks());

@@ -31,6 +31,8 @@ void VoxelFreeSpaceConfig::validate() const {
   requireConfig(min_cluster_area >= 0.0, p + "min_cluster_area", "must be >= 0");
   requireConfig(update_every_keyframes >= 1, p + "update_every_keyframes", "must be >= 1");
   requireConfig(merge_distance > 0.0, p + "merge_distance", "must be > 0");
+  requireConfig(merging == "center_distance" || merging == "module", p + "merging",
+                "must be \"center_distance\" or \"module\" (got \"" + merging + "\")");
 }
 
 void RoomExtractionConfig::validate() const {

@@ -31,6 +31,7 @@ void WallExtractionConfig::validate() const {
   requireConfig(horizontal_tolerance_deg > 0.0 && horizontal_tolerance_deg < 45.0,
                 p + "horizontal_tolerance_deg", "must be in (0, 45)");
   requireConfig(max_gap > 0.0, p + "max_gap", "must be > 0");
+  requireConfig(edge_band >= 0.0, p + "edge_band", "must be >= 0");
   requireConfig(min_wall_inliers >= 3, p + "min_wall_inliers", "must be >= 3");
   requireConfig(min_wall_length >= 0.0, p + "min_wall_length", "must be >= 0");
   requireConfig(min_wall_height >= 0.0, p + "min_wall_height", "must be >= 0");
@@ -239,27 +240,44 @@ bool makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
 }
 
 // Splits the inliers of a vertical plane into runs along the wall separated by > max_gap and
-// appends the runs that make valid segments.
+// appends the runs that make valid segments. Runs and their extents come from the inliers off the
+// plane's floor and ceiling lines (edge_band); those lines cross doorways, so their inliers only
+// join a run they lie within.
 void splitIntoWalls(const Points& pts, const std::vector<uint32_t>& inliers, const Plane& pl,
                     const WallExtractionConfig& cfg, const Eigen::Vector3d& viewpoint,
                     std::vector<WallSegment>* walls) {
+  float z_lo = std::numeric_limits<float>::infinity(), z_hi = -z_lo;
+  for (uint32_t i : inliers) {
+    z_lo = std::min(z_lo, pts[i].z());
+    z_hi = std::max(z_hi, pts[i].z());
+  }
+  const float band = static_cast<float>(cfg.edge_band);
+  // A plane lower than a few bands (a kerb, a low box) has no body: every inlier counts.
+  const bool use_band = band > 0.0f && z_hi - z_lo > 4.0f * band;
+  const auto onEdge = [&](uint32_t i) {
+    return use_band && (pts[i].z() < z_lo + band || pts[i].z() > z_hi - band);
+  };
   const Eigen::Vector2f axis = wallAxis(pl.n).cast<float>();
-  std::vector<std::pair<float, uint32_t>> along(inliers.size());
-  for (size_t k = 0; k < inliers.size(); ++k) {
-    along[k] = {axis.dot(pts[inliers[k]].head<2>()), inliers[k]};
+  std::vector<std::pair<float, uint32_t>> body, edge;
+  for (uint32_t i : inliers) {
+    (onEdge(i) ? edge : body).emplace_back(axis.dot(pts[i].head<2>()), i);
   }
-  std::sort(along.begin(), along.end());
+  std::sort(body.begin(), body.end());
+  std::sort(edge.begin(), edge.end());
+  size_t e = 0;  // edge inliers are visited once, in order along the wall
   std::vector<uint32_t> run;
-  for (size_t k = 0; k < along.size(); ++k) {
-    if (k > 0 && along[k].first - along[k - 1].first > cfg.max_gap) {
-      WallSegment wall;
-      if (makeWallSegment(pts, run, cfg, viewpoint, &wall)) walls->push_back(wall);
-      run.clear();
+  for (size_t k = 0; k < body.size(); ++k) {
+    run.push_back(body[k].second);
+    const bool last = k + 1 == body.size() || body[k + 1].first - body[k].first > cfg.max_gap;
+    if (!last) continue;
+    const float t0 = body[k + 1 - run.size()].first, t1 = body[k].first;
+    for (; e < edge.size() && edge[e].first <= t1; ++e) {
+      if (edge[e].first >= t0) run.push_back(edge[e].second);
     }
-    run.push_back(along[k].second);
+    WallSegment wall;
+    if (makeWallSegment(pts, run, cfg, viewpoint, &wall)) walls->push_back(wall);
+    run.clear();
   }
-  WallSegment wall;
-  if (makeWallSegment(pts, run, cfg, viewpoint, &wall)) walls->push_back(wall);
 }
 
 WallSegment makeHorizontal(const Points& pts, const std::vector<uint32_t>& inliers, Plane pl,
