@@ -70,9 +70,9 @@ void LoopClosureNode::roomsCallback(const tacs_graphs::RoomObservations::ConstPt
   for (const auto& room : msg->rooms) {
     if (!room.redetected) continue;
     RoomRequest request;
-    request.query = msg->keyframe_id;
     request.room_id = static_cast<int>(room.room_id);
     request.room_keyframes.assign(room.keyframe_ids.begin(), room.keyframe_ids.end());
+    request.query = cosgQueryKeyframe(request.room_keyframes, msg->keyframe_id);
     if (detector_.hasKeyframe(request.query)) {
       detectInRoom(request);
       continue;

@@ -219,5 +219,12 @@ TEST(LoopClosureCosg, UnknownQueryOrEmptyRoomIsSkipped) {
   EXPECT_EQ(d.registrations, 0);
 }
 
+TEST(LoopClosureCosg, QueryIsTheRoomsNewestKeyframe) {
+  // The keyframe that ended an observation may stand past the doorway; the query is the robot's
+  // last keyframe inside the re-detected room.
+  EXPECT_EQ(cosgQueryKeyframe({3, 41, 17, 40}, 42), 41u);
+  EXPECT_EQ(cosgQueryKeyframe({}, 42), 42u);
+}
+
 }  // namespace
 }  // namespace tacs

@@ -128,4 +128,9 @@ class LoopDetector {
   LoopDetectorStats stats_;
 };
 
+/// The query keyframe of CoSG-LCD for a re-detected room: the room's newest keyframe, the robot's
+/// last one inside it (the keyframe that ended the observation may stand past the doorway, in the
+/// next room, and overlap the room's keyframes only in part); `fallback` when the room has none.
+uint32_t cosgQueryKeyframe(const std::vector<uint32_t>& room_keyframe_ids, uint32_t fallback);
+
 }  // namespace tacs

@@ -276,4 +276,9 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
   return det;
 }
 
+uint32_t cosgQueryKeyframe(const std::vector<uint32_t>& room_keyframe_ids, uint32_t fallback) {
+  if (room_keyframe_ids.empty()) return fallback;
+  return *std::max_element(room_keyframe_ids.begin(), room_keyframe_ids.end());
+}
+
 }  // namespace tacs

@@ -99,9 +99,9 @@ void Pipeline::applyRooms(const RoomSegmentationResult& result, uint32_t query_k
     for (const auto& [mapped, observed] : a.wall_to_wall) backend_.addWallToWall(mapped, observed);
     if (a.created) continue;
     ++stats_.room_redetections;
-    if (config_.loop_closure.method == "cosg" && backend_.hasKeyframe(query_keyframe)) {
-      applyLoops(loop_detector_.detectInRoom(query_keyframe, room->second.room.keyframe_ids),
-                 outcome);
+    const uint32_t query = cosgQueryKeyframe(room->second.room.keyframe_ids, query_keyframe);
+    if (config_.loop_closure.method == "cosg" && backend_.hasKeyframe(query)) {
+      applyLoops(loop_detector_.detectInRoom(query, room->second.room.keyframe_ids), outcome);
     }
   }
 }
