@@ -4,18 +4,18 @@
 #include <filesystem>
 #include <limits>
 
+#include "common/test_paths.h"
 #include "tacs_graphs/common/trajectory_io.h"
 #include "tacs_graphs/eval/trajectory_metrics.h"
 #include "tacs_graphs/pipeline/run_folder.h"
 #include "tacs_graphs/sim/scan_stream.h"
-#include "common/test_paths.h"
 
 namespace tacs {
 namespace {
 
 /// Streams the first `seconds` of the smoke world through a pipeline.
 struct SmokeRun {
-  explicit SmokeRun(double seconds) : pipeline(PipelineConfig{}) {
+  explicit SmokeRun(double seconds, const PipelineConfig& config = {}) : pipeline(config) {
     sim::SimOptions options;
     options.duration_s = seconds;
     sim::ScanStream stream(sim::loadWorld(test::sourceDir() + "/worlds/smoke.json"), options);
@@ -47,6 +47,18 @@ TEST(Pipeline, TracksTheSmokeWorldAndMapsItsWalls) {
   EXPECT_GE(walls, 4u);
   EXPECT_LE(walls, 22u);
   EXPECT_GT(run.pipeline.backend().optimizations(), 0);
+}
+
+TEST(Pipeline, OdometryAndWallsOnlyWhenRoomsAndLoopsAreOff) {
+  PipelineConfig config;
+  config.rooms.method = "none";
+  config.loop_closure.method = "none";
+  SmokeRun run(8.0, config);
+  EXPECT_GT(run.pipeline.stats().keyframes, 10u);
+  EXPECT_GE(run.pipeline.sceneGraph().walls.size(), 4u);
+  EXPECT_TRUE(run.pipeline.sceneGraph().rooms.empty());
+  EXPECT_TRUE(run.pipeline.sceneGraph().loops.empty());
+  EXPECT_LT(computeAte(run.pipeline.keyframeTrajectory(), run.ground_truth).rmse, 0.10);
 }
 
 TEST(Pipeline, RejectsBadScansAndKeepsGoing) {

@@ -89,7 +89,7 @@ struct DistanceLoopConfig {
 };
 
 struct LoopClosureConfig {
-  std::string method = "cosg";  // cosg (room-triggered) | distance (every keyframe)
+  std::string method = "cosg";  // cosg (room-triggered) | distance (every keyframe) | none
   LoopRegistrationConfig registration;
   CosgLoopConfig cosg;
   DistanceLoopConfig distance;

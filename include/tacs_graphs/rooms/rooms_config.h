@@ -25,7 +25,7 @@ struct TacsFreeSpaceConfig {
   double jamb_max_offset = 0.25;
   /// A room observation is also emitted after this many keyframes in one region, so a robot that
   /// stays in one room still reports it (the next observation is merged into it) [-].
-  int max_keyframes_per_observation = 60;
+  int max_keyframes_per_observation = 40;
   /// The robot is on the safe node nearest to it within this radius (xy) [m].
   double robot_search_radius = 0.4;
   /// T_inside of a keyframe is its room-graph component within this distance (xy) of the robot,
@@ -141,7 +141,8 @@ struct RoomMergingConfig {
 };
 
 struct RoomsConfig {
-  /// "tacs" (traversable free space, the paper) or "voxel" (S-Graphs+ style baseline).
+  /// "tacs" (traversable free space, the paper), "voxel" (S-Graphs+ style baseline) or "none"
+  /// (no rooms: odometry and walls only).
   std::string method = "tacs";
   TacsFreeSpaceConfig tacs;
   VoxelFreeSpaceConfig voxel;

@@ -79,6 +79,12 @@ std::string fixed(double v, int digits) {
   return o.str();
 }
 
+// False when the method switches `section` off (`method: none`): it has no rows in that table.
+bool runsStage(const EvalMethod& method, const char* section) {
+  const auto it = method.overrides.find(section);
+  return it == method.overrides.end() || !it->is_object() || it->value("method", "") != "none";
+}
+
 }  // namespace
 
 std::map<std::string, std::map<size_t, MethodSummary>> summarize(const std::vector<EvalRun>& runs,
@@ -117,6 +123,7 @@ void writeEvalReport(const std::string& out_dir, const std::vector<EvalRun>& run
      << "|---|---|---|---|---|---|---|\n";
   for (const auto& [world, by_method] : summaries) {
     for (const auto& [m, s] : by_method) {
+      if (!runsStage(methods[m], "rooms")) continue;
       md << "| " << world << " | " << methods[m].label << " | " << s.trials << " | "
          << fixed(s.n_room, 1) << " | " << fixed(s.sigma_room, 2) << " | "
          << (s.trials > 1 ? fixed(100.0 * s.dcs, 1) : std::string("-")) << " | "
@@ -130,6 +137,7 @@ void writeEvalReport(const std::string& out_dir, const std::vector<EvalRun>& run
      << "| World | Method | precision | recall | F1 | Dice |\n|---|---|---|---|---|---|\n";
   for (const auto& [world, by_method] : summaries) {
     for (const auto& [m, s] : by_method) {
+      if (!runsStage(methods[m], "rooms")) continue;
       md << "| " << world << " | " << methods[m].label << " | " << fixed(s.room_precision, 2)
          << " | " << fixed(s.room_recall, 2) << " | " << fixed(s.room_f1, 2) << " | "
          << fixed(s.room_dice, 2) << " |\n";
@@ -142,6 +150,7 @@ void writeEvalReport(const std::string& out_dir, const std::vector<EvalRun>& run
      << "| World | Method | ATE (m) | N_loop | PR_loop | t_LD (s) |\n|---|---|---|---|---|---|\n";
   for (const auto& [world, by_method] : summaries) {
     for (const auto& [m, s] : by_method) {
+      if (!runsStage(methods[m], "loop_closure")) continue;
       md << "| " << world << " | " << methods[m].label << " | " << fixed(s.ate_m, 3) << " | "
          << fixed(s.n_loop, 1) << " | " << fixed(s.pr_loop, 2) << " | " << fixed(s.t_ld_s, 2)
          << " |\n";

@@ -63,6 +63,7 @@ RoomSegmentationResult RoomSegmenter::processKeyframe(uint32_t keyframe_id, cons
                                                       const PointCloud* cloud_in_base) {
   Stopwatch watch;
   RoomSegmentationResult result;
+  if (config_.method == "none") return result;
   room_map_.refreshWalls(walls.landmarks());
   const DominantAxes axes = estimateDominantAxes(walls, axes_config_);
   if (config_.method == "voxel") {
@@ -90,6 +91,7 @@ RoomSegmentationResult RoomSegmenter::processKeyframe(uint32_t keyframe_id, cons
 RoomSegmentationResult RoomSegmenter::finish(const TraversableMap& map, const WallMap& walls) {
   Stopwatch watch;
   RoomSegmentationResult result;
+  if (config_.method == "none") return result;
   room_map_.refreshWalls(walls.landmarks());
   const DominantAxes axes = estimateDominantAxes(walls, axes_config_);
   if (config_.method == "voxel") {

@@ -57,8 +57,8 @@ void RoomMergingConfig::validate() const {
 }
 
 void RoomsConfig::validate() const {
-  requireConfig(method == "tacs" || method == "voxel", "rooms.method",
-                "must be \"tacs\" or \"voxel\" (got \"" + method + "\")");
+  requireConfig(method == "tacs" || method == "voxel" || method == "none", "rooms.method",
+                "must be \"tacs\", \"voxel\" or \"none\" (got \"" + method + "\")");
   tacs.validate();
   voxel.validate();
   extraction.validate();
