@@ -99,6 +99,7 @@ void RoomMap::mergeInto(MappedRoom* m, const RoomObservation& o, bool union_free
                         const std::map<uint32_t, WallLandmark>& landmarks, RoomAssociation* out) {
   out->room_id = m->id;
   out->created = false;
+  const auto obs_cells = cellsOf(o.free_space);
   // Walls: adopt a facing pair the mapped room lacks; tie differing walls (eq. 4).
   for (int pair = 0; pair < 2; ++pair) {
     const int lo = 2 * pair, hi = 2 * pair + 1;
@@ -112,7 +113,7 @@ void RoomMap::mergeInto(MappedRoom* m, const RoomObservation& o, bool union_free
     }
     // Walls of the same category that are two landmarks of one wall are tied (eq. 4). Where the
     // two views chose different walls, the view with more free space decides.
-    const bool obs_larger = cellsOf(o.free_space).size() > m->cells.size();
+    const bool obs_larger = obs_cells.size() > m->cells.size();
     bool replace = false;
     for (int c : {lo, hi}) {
       if (m->room.walls[c] == o.walls[c]) continue;
@@ -132,10 +133,10 @@ void RoomMap::mergeInto(MappedRoom* m, const RoomObservation& o, bool union_free
   m->room.kind = m->room.hasXPair() && m->room.hasYPair() ? RoomKind::kRoom : RoomKind::kCorridor;
   if (union_free_space) {
     unionPoints(&m->room.free_space, o.free_space);
-    for (int64_t c : cellsOf(o.free_space)) m->cells.insert(c);
+    m->cells.insert(obs_cells.begin(), obs_cells.end());
   } else {
     m->room.free_space = o.free_space;
-    m->cells = cellsOf(o.free_space);
+    m->cells = obs_cells;
   }
   unionIds(&m->room.keyframe_ids, o.keyframe_ids);
   ++m->observations;
@@ -193,8 +194,10 @@ RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
     // Two corridor views between landmarks of the same wall planes with no wall standing between
     // them are one corridor walked in pieces (its walls broken by doors); rooms in a row, which
     // also share such planes, have their partition wall between them.
+    // (Only evaluated where it decides: the landmark scan is the costly part of the test.)
     const bool corridor_continues =
-        corridors && !wallBetween(m.room.center.head<2>(), observation.center.head<2>(), landmarks);
+        corridors && overlap < kTouching &&
+        !wallBetween(m.room.center.head<2>(), observation.center.head<2>(), landmarks);
     const bool same_walls = (apart_ok && same_pair(0, 1, false) && same_pair(2, 3, false)) ||
                             ((overlap >= kTouching || corridor_continues) &&
                              same_pair(0, 1, true) && same_pair(2, 3, true));
