@@ -12,7 +12,7 @@ int main(int argc, char** argv) {
   ros::NodeHandle pnh("~");
   try {
     tacs::BackendNode node(nh, pnh);
-    tacs::spinUntilStopped();
+    tacs::spinUntilStopped([&node] { node.publishIfChanged(); });
     node.shutdown();
   } catch (const tacs::ConfigError& e) {
     ROS_FATAL_STREAM("backend: bad configuration: " << e.what());

@@ -14,7 +14,9 @@ int main(int argc, char** argv) {
     tacs::GicpOdometryNode node(nh, pnh);
     tacs::spinUntilStopped();
     ROS_INFO_STREAM("gicp_odometry: " << node.scansProcessed() << " scans processed, "
-                                      << node.scansDropped() << " dropped");
+                                      << node.scansDropped() << " dropped (bad input), "
+                                      << node.scansMissing()
+                                      << " missing between received scans (full queue or gaps)");
   } catch (const tacs::ConfigError& e) {
     ROS_FATAL_STREAM("gicp_odometry: bad configuration: " << e.what());
     return 1;

@@ -64,6 +64,13 @@ void BackendNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg) {
     warnings_.warn("keyframe", WarnOnce::reasonKey(kf.error), kf.error + ", skipped");
     return;
   }
+  // The odometry numbers its keyframes one by one: a jump is keyframes lost on the way.
+  if (session_->keyframeCount() > 0 && kf.id > session_->newestKeyframe() + 1) {
+    ROS_WARN_STREAM("keyframe: " << kf.id - session_->newestKeyframe() - 1
+                                 << " keyframe(s) before id " << kf.id
+                                 << " never arrived (a full queue on /tacs/keyframe or an "
+                                    "odometry restart); the graph has a gap there");
+  }
   const auto outcome =
       session_->addKeyframe(kf.id, kf.stamp, kf.T_odom_base, kf.information, kf.cloud);
   if (outcome == BackendSession::Outcome::kDuplicate) {
@@ -72,7 +79,7 @@ void BackendNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg) {
   }
   latest_stamp_ = std::max(latest_stamp_, kf.stamp);
   map_dirty_ = true;
-  update();
+  changed_ = true;
 }
 
 void BackendNode::wallsCallback(const tacs_graphs::WallObservations::ConstPtr& msg) {
@@ -90,7 +97,7 @@ void BackendNode::wallsCallback(const tacs_graphs::WallObservations::ConstPtr& m
   if (outcome == BackendSession::Outcome::kDropped) {
     warnings_.warn("wall observations", "walls of a keyframe that never arrived, dropped");
   } else if (outcome == BackendSession::Outcome::kAdded && !walls.empty()) {
-    update();
+    changed_ = true;
   }
 }
 
@@ -104,7 +111,7 @@ void BackendNode::roomsCallback(const tacs_graphs::RoomObservations::ConstPtr& m
       warnings_.warn("room observation", "no facing wall pair in the graph, room not updated");
     }
   }
-  if (stored > 0) update();
+  if (stored > 0) changed_ = true;
 }
 
 void BackendNode::loopCallback(const tacs_graphs::LoopClosure::ConstPtr& msg) {
@@ -114,7 +121,13 @@ void BackendNode::loopCallback(const tacs_graphs::LoopClosure::ConstPtr& msg) {
     warnings_.warn("loop closure", "non-finite relative pose or information, skipped");
     return;
   }
-  if (session_->addLoop(edge, information) == BackendSession::Outcome::kAdded) update();
+  if (session_->addLoop(edge, information) == BackendSession::Outcome::kAdded) changed_ = true;
+}
+
+void BackendNode::publishIfChanged() {
+  if (!changed_) return;
+  changed_ = false;
+  update();
 }
 
 void BackendNode::update() {
@@ -158,6 +171,7 @@ bool BackendNode::save(std::string* message) {
 }
 
 bool BackendNode::saveService(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  publishIfChanged();  // messages of the same batch as the request are in the saved graph
   res.success = save(&res.message);
   return true;
 }

@@ -3,6 +3,7 @@
 #include <pcl/common/transforms.h>
 #include <tf2_eigen/tf2_eigen.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "tacs_graphs/ros/cloud_conversion.h"
@@ -44,7 +45,8 @@ GicpOdometryNode::GicpOdometryNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
     ROS_INFO_STREAM("External odometry " << nh.resolveName(external_topic) << " with clouds on "
                                          << nh.resolveName(points_topic));
   }
-  cloud_sub_ = nh.subscribe(points_topic, 5, &GicpOdometryNode::cloudCallback, this,
+  const int queue_size = std::max(1, pnh.param("points_queue_size", 30));
+  cloud_sub_ = nh.subscribe(points_topic, queue_size, &GicpOdometryNode::cloudCallback, this,
                             ros::TransportHints().tcpNoDelay());
 }
 
@@ -96,6 +98,15 @@ void GicpOdometryNode::externalOdomCallback(const nav_msgs::Odometry::ConstPtr& 
 }
 
 void GicpOdometryNode::cloudCallback(const sensor_msgs::PointCloud2::ConstPtr& msg) {
+  const size_t missing = scan_gaps_.observe(msg->header.stamp.toSec());
+  if (missing > 0) {
+    ROS_WARN_STREAM_THROTTLE(10.0, "cloud: " << missing << " scan(s) missing before stamp "
+                                             << std::fixed << msg->header.stamp.toSec() << " ("
+                                             << scan_gaps_.missingTotal()
+                                             << " so far): the queue of ~points_queue_size was "
+                                                "full (odometry slower than the sensor or the "
+                                                "bag rate) or the input has a gap");
+  }
   if (external_ && msg->header.stamp.toSec() > external_->latestStamp()) {
     waiting_for_odometry_.push_back(msg);
     if (waiting_for_odometry_.size() > kMaxScansWaitingForOdometry) {

@@ -20,9 +20,10 @@ void installStopHandler() {
   std::signal(SIGTERM, onStopSignal);
 }
 
-void spinUntilStopped() {
+void spinUntilStopped(const std::function<void()>& after_callbacks) {
   while (ros::ok() && !g_stop_requested) {
     ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.1));
+    if (after_callbacks) after_callbacks();
   }
 }
 

@@ -41,6 +41,11 @@ class BackendNode {
   /// Writes the run products if ~save_on_shutdown; logs instead of throwing.
   void shutdown();
 
+  /// Optimises if due and publishes, once for all the messages taken since the last call: the
+  /// main loop calls it after each batch of callbacks, so a backlog of keyframes (a bag played
+  /// fast, a long optimisation) costs one optimisation and one scene graph, not one per message.
+  void publishIfChanged();
+
  private:
   void keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg);
   void wallsCallback(const tacs_graphs::WallObservations::ConstPtr& msg);
@@ -60,6 +65,7 @@ class BackendNode {
   double latest_stamp_ = 0.0;
   double last_tf_stamp_ = 0.0;
   bool map_dirty_ = false;
+  bool changed_ = false;  // messages taken since the last publishIfChanged()
 
   ros::Subscriber keyframe_sub_, walls_sub_, rooms_sub_, loop_sub_;
   ros::Publisher graph_pub_, marker_pub_, map_pub_;

@@ -53,6 +53,8 @@ class BackendSession {
   Pose3 mapToOdom() const { return backend_.mapToOdom(); }
   std::map<uint32_t, uint32_t> wallObservationCounts() const;
   size_t keyframeCount() const { return journal_keyframes_.size(); }
+  /// The highest keyframe id taken (0 before the first).
+  uint32_t newestKeyframe() const { return newest_keyframe_; }
   size_t pendingCount() const;
 
   /// Map cloud (map frame): keyframe clouds at optimised poses plus a recovered map, if any.

@@ -7,6 +7,8 @@
 //   ~external_odom_topic ("")         nav_msgs/Odometry to use instead of GICP (S-Graphs bags)
 //   ~external_odom_sigma_xyz_m (0.05), ~external_odom_sigma_rot_deg (1.0): its keyframe noise
 //   ~publish_tf (true)                broadcast odom -> base (off when the bag already has it)
+//   ~points_queue_size (30)           clouds waiting for the odometry (3 s at 10 Hz); scans lost
+//                                     to a full queue are counted from the stamps and logged
 // Keyframe clouds go out at odometry.keyframe_cloud_voxel_m (finer than the odometry's own grid:
 // traversability needs several points per tri-grid node).
 #pragma once
@@ -28,6 +30,7 @@
 #include "tacs_graphs/odometry/lidar_odometry.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
 #include "tacs_graphs/ros/external_odometry.h"
+#include "tacs_graphs/ros/scan_gap_monitor.h"
 #include "tacs_graphs/ros/warn_once.h"
 
 namespace tacs {
@@ -39,6 +42,7 @@ class GicpOdometryNode {
 
   size_t scansProcessed() const { return scans_processed_; }
   size_t scansDropped() const { return warnings_.total(); }
+  size_t scansMissing() const { return scan_gaps_.missingTotal(); }
 
  private:
   void cloudCallback(const sensor_msgs::PointCloud2::ConstPtr& msg);
@@ -64,6 +68,7 @@ class GicpOdometryNode {
   std::map<std::string, Pose3> extrinsics_;
   std::set<std::string> fallback_frames_;  // extrinsic from frames.base_to_sensor, not TF
   WarnOnce warnings_;
+  ScanGapMonitor scan_gaps_;
   std::optional<double> last_stamp_;
   size_t scans_processed_ = 0;
 };

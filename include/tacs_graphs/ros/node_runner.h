@@ -4,12 +4,15 @@
 // summaries) still runs with ROS up and is logged.
 #pragma once
 
+#include <functional>
+
 namespace tacs {
 
 /// Installs a SIGINT/SIGTERM handler that only sets a flag.
 void installStopHandler();
 
-/// Processes callbacks until SIGINT/SIGTERM or ros::shutdown().
-void spinUntilStopped();
+/// Processes callbacks until SIGINT/SIGTERM or ros::shutdown(); `after_callbacks`, if given, runs
+/// after every batch of callbacks that were waiting together.
+void spinUntilStopped(const std::function<void()>& after_callbacks = {});
 
 }  // namespace tacs
