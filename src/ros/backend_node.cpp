@@ -105,13 +105,14 @@ void BackendNode::roomsCallback(const tacs_graphs::RoomObservations::ConstPtr& m
   // Rooms arrive associated (room merging runs in room_segmentation) with the backend's wall ids.
   size_t stored = 0;
   for (const auto& r : msg->rooms) {
+    for (uint32_t absorbed : r.absorbed_room_ids) session_->removeRoom(absorbed);
     if (session_->setRoom(fromRoomObservationMsg(r), wallToWallPairs(r))) {
       ++stored;
     } else {
       warnings_.warn("room observation", "no facing wall pair in the graph, room not updated");
     }
   }
-  if (stored > 0) changed_ = true;
+  if (stored > 0 || !msg->rooms.empty()) changed_ = true;
 }
 
 void BackendNode::loopCallback(const tacs_graphs::LoopClosure::ConstPtr& msg) {

@@ -179,6 +179,11 @@ size_t BackendSession::pendingCount() const {
   return pending_walls_.size() + pending_loops_.size();
 }
 
+void BackendSession::removeRoom(uint32_t id) {
+  backend_.removeRoom(id);
+  journal_rooms_.erase(id);
+}
+
 bool BackendSession::setRoom(const MappedRoom& room,
                              const std::vector<std::pair<uint32_t, uint32_t>>& wall_to_wall) {
   if (!backend_.setRoom(room)) return false;

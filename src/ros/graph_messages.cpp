@@ -139,6 +139,7 @@ tacs_graphs::RoomObservation toRoomObservationMsg(const MappedRoom& room,
     msg.wall_to_wall.push_back(mapped);
     msg.wall_to_wall.push_back(observed);
   }
+  msg.absorbed_room_ids.assign(association.absorbed.begin(), association.absorbed.end());
   return msg;
 }
 

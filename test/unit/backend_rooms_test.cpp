@@ -81,6 +81,22 @@ TEST(BackendRooms, CorridorIsAnchoredAlongItsWalls) {
   EXPECT_NEAR(c.center.y(), 3.0, 0.05);  // the free-space centre along them
 }
 
+TEST(BackendRooms, RemovedRoomLeavesTheGraphAndItsKeyframes) {
+  Backend backend{BackendConfig(), WallAssociationConfig()};
+  const auto ids = buildRoom(&backend);
+  MappedRoom corridor = roomOn(ids, true);
+  corridor.id = 5;
+  ASSERT_TRUE(backend.setRoom(roomOn(ids, false)));
+  ASSERT_TRUE(backend.setRoom(corridor));
+  backend.removeRoom(5);  // merged into room 3
+  backend.optimize();
+  const SceneGraph g = backend.sceneGraph();
+  EXPECT_EQ(backend.roomCount(), 1u);
+  ASSERT_EQ(g.rooms.count(5), 0u);
+  EXPECT_EQ(g.keyframes.at(0).room_id, 3);
+  EXPECT_NEAR(g.rooms.at(3).center.x(), 4.0, 0.01);
+}
+
 TEST(BackendRooms, RejectsUnknownWallsAndDuplicateWallToWallEdges) {
   Backend backend{BackendConfig(), WallAssociationConfig()};
   const auto ids = buildRoom(&backend);

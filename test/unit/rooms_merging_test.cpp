@@ -146,6 +146,32 @@ TEST(RoomsMerging, NeighboursInARowSharingFrontAndBackWallsStayApart) {
   EXPECT_NE(second.room_id, first.room_id);
 }
 
+TEST(RoomsMerging, MappedRoomsMergeWhenOneComesToLieInsideTheOther) {
+  // A hall first seen as a strip along its bottom side (an x-direction corridor), then from its
+  // left side (a y-direction corridor: perpendicular, so apart), then the left view grows over
+  // most of the hall and the bottom strip lies inside it: one room, the larger keeps its id.
+  RoomMap map;
+  RoomObservation bottom = xCorridor(0, 20, 0, 3, 3, 4);
+  bottom.keyframe_ids = {1, 2};
+  const auto strip = map.addObservation(bottom, kNoWalls);
+  const auto side = map.addObservation(yCorridor(0, 3, 0, 12, 1, 2), kNoWalls);
+  ASSERT_TRUE(side.created);
+  ASSERT_EQ(map.rooms().size(), 2u);
+  RoomObservation most = yCorridor(0, 20, 0.5, 12, 1, 2);
+  most.keyframe_ids = {90};
+  const auto grown = map.addObservation(most, kNoWalls);
+  EXPECT_FALSE(grown.created);
+  EXPECT_EQ(grown.room_id, side.room_id);
+  EXPECT_EQ(grown.absorbed, (std::vector<uint32_t>{strip.room_id}));
+  ASSERT_EQ(map.rooms().size(), 1u);
+  const MappedRoom& hall = map.rooms().at(side.room_id);
+  EXPECT_EQ(hall.room.keyframe_ids, (std::vector<uint32_t>{1, 2, 90}));
+  EXPECT_EQ(hall.observations, 3u);
+  // A room merely touching the hall stays apart.
+  EXPECT_TRUE(map.addObservation(yCorridor(20.2, 24, 0, 12, 5, 6), kNoWalls).created);
+  EXPECT_EQ(map.rooms().size(), 2u);
+}
+
 TEST(RoomsMerging, CorridorReDetectedAsRoomBecomesARoom) {
   RoomMap map;
   const auto first = map.addObservation(yCorridor(0, 4, 0, 4, 1, 2), kNoWalls);

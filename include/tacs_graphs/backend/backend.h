@@ -42,6 +42,8 @@ class Backend {
   /// wallMap(); pairs on walls the graph does not hold are skipped. Returns false (and stores
   /// nothing) when no pair is left. Free space and keyframes go into sceneGraph().
   bool setRoom(const MappedRoom& room);
+  /// Removes a room and its factors (a room merged into another by room merging).
+  void removeRoom(uint32_t id);
   /// Wall-to-wall edge of room merging (paper eq. 4) between two wall landmarks; returns false
   /// when a wall is unknown, both ids are the same or the edge exists already.
   bool addWallToWall(uint32_t wall_a, uint32_t wall_b);

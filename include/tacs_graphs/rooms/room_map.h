@@ -8,12 +8,14 @@
 // wall between them) on every axis both define also merge without overlap (a long corridor or a
 // hall walked in separate pieces), and so does a view lying almost entirely inside a mapped room
 // (`nested_overlap`, a first partial view). Otherwise perpendicular corridors, which share no
-// axis, never merge. The mapped room takes over the observation's free space and
-// keyframes, adopts a wall pair it lacked (a corridor re-detected as a four-wall room becomes a
-// room), and every wall of the observation that differs from the mapped room's wall of the same
-// category but lies within max_axis_distance of its plane (two landmarks of one wall) is
-// returned as a wall-to-wall pair (eq. 4) for the backend; where the walls of a pair are
-// different walls, the view with more free space gives the room its walls.
+// axis, never merge. Mapped rooms merge with each other by the same nesting rule when, after an
+// observation grew one of them, the smaller lies almost entirely inside the larger (both views
+// of one hall grew towards each other); the larger keeps its id. The mapped room takes over the
+// observation's free space and keyframes, adopts a wall pair it lacked (a corridor re-detected as a
+// four-wall room becomes a room), and every wall of the observation that differs from the mapped
+// room's wall of the same category but lies within max_axis_distance of its plane (two landmarks of
+// one wall) is returned as a wall-to-wall pair (eq. 4) for the backend; where the walls of a pair
+// are different walls, the view with more free space gives the room its walls.
 //
 // Baseline merging (addByCenterDistance, S-Graphs+): the nearest mapped room within a fixed 2D
 // centre distance, whatever the free space; the room's region becomes the latest cluster.
@@ -51,6 +53,9 @@ struct RoomAssociation {
   /// (wall of the mapped room, wall of the observation) of the same category that differ: the
   /// wall-to-wall edges of eq. 4.
   std::vector<std::pair<uint32_t, uint32_t>> wall_to_wall;
+  /// Mapped rooms merged into room_id because one came to lie inside the other as both grew
+  /// (a hall first seen as a strip along one side): they no longer exist.
+  std::vector<uint32_t> absorbed;
 };
 
 class RoomMap {
@@ -89,6 +94,8 @@ class RoomMap {
                                 const std::map<uint32_t, WallLandmark>& landmarks);
   void mergeInto(MappedRoom* mapped, const RoomObservation& observation, bool union_free_space,
                  const std::map<uint32_t, WallLandmark>& landmarks, RoomAssociation* out);
+  /// Merges mapped rooms nested in (or around) room out->room_id into the larger of each pair.
+  void absorbNestedRooms(const std::map<uint32_t, WallLandmark>& landmarks, RoomAssociation* out);
   std::unordered_set<int64_t> cellsOf(const std::vector<Eigen::Vector3d>& pts) const;
   void remember(const std::map<uint32_t, WallLandmark>& landmarks);
   bool sameWall(int a, int b) const;

@@ -43,6 +43,8 @@ class BackendSession {
   /// its facing wall pairs (nothing stored; the next update of the room tries again).
   bool setRoom(const MappedRoom& room,
                const std::vector<std::pair<uint32_t, uint32_t>>& wall_to_wall = {});
+  /// Removes a room merged into another (RoomAssociation::absorbed), from the graph and journal.
+  void removeRoom(uint32_t id);
   size_t roomCount() const { return backend_.roomCount(); }
 
   std::optional<OptimizationReport> optimizeIfDue() { return backend_.optimizeIfDue(); }

@@ -29,6 +29,11 @@ bool Backend::setRoom(const MappedRoom& room) {
   return true;
 }
 
+void Backend::removeRoom(uint32_t id) {
+  graph_.removeRoom(id);
+  rooms_.erase(id);
+}
+
 bool Backend::addWallToWall(uint32_t wall_a, uint32_t wall_b) {
   if (wall_a == wall_b || !graph_.hasWall(wall_a) || !graph_.hasWall(wall_b)) return false;
   if (!wall_to_wall_.emplace(std::min(wall_a, wall_b), std::max(wall_a, wall_b)).second) {

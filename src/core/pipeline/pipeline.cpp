@@ -95,6 +95,7 @@ void Pipeline::applyRooms(const RoomSegmentationResult& result, uint32_t query_k
   for (const RoomAssociation& a : result.associations) {
     const auto room = room_segmenter_.rooms().find(a.room_id);
     if (room == room_segmenter_.rooms().end()) continue;
+    for (uint32_t absorbed : a.absorbed) backend_.removeRoom(absorbed);
     backend_.setRoom(room->second);
     for (const auto& [mapped, observed] : a.wall_to_wall) backend_.addWallToWall(mapped, observed);
     if (a.created) continue;

@@ -211,7 +211,41 @@ RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
       best = &m;
     }
   }
-  return mergeOrCreate(best, observation, /*union_free_space=*/true, landmarks);
+  RoomAssociation out = mergeOrCreate(best, observation, /*union_free_space=*/true, landmarks);
+  absorbNestedRooms(landmarks, &out);
+  return out;
+}
+
+void RoomMap::absorbNestedRooms(const std::map<uint32_t, WallLandmark>& landmarks,
+                                RoomAssociation* out) {
+  for (bool merged = true; merged;) {
+    merged = false;
+    MappedRoom& grown = rooms_.at(out->room_id);
+    for (auto& [id, other] : rooms_) {
+      if (id == grown.id) continue;
+      const bool other_smaller = other.cells.size() <= grown.cells.size();
+      const auto& small = other_smaller ? other.cells : grown.cells;
+      const auto& large = other_smaller ? grown.cells : other.cells;
+      if (small.empty()) continue;
+      size_t shared = 0;
+      for (int64_t c : small) shared += large.count(c);
+      if (static_cast<double>(shared) / small.size() < config_.nested_overlap) continue;
+      MappedRoom& keeper = other_smaller ? grown : other;
+      const MappedRoom absorbed = other_smaller ? other : grown;
+      RoomAssociation merge;
+      mergeInto(&keeper, absorbed.room, /*union_free_space=*/true, landmarks, &merge);
+      keeper.observations += absorbed.observations - 1;
+      out->wall_to_wall.insert(out->wall_to_wall.end(), merge.wall_to_wall.begin(),
+                               merge.wall_to_wall.end());
+      out->absorbed.push_back(absorbed.id);
+      // The keeper existed before: what the observation grew is a re-detection of it.
+      out->room_id = keeper.id;
+      out->created = false;
+      rooms_.erase(absorbed.id);
+      merged = true;
+      break;  // the map changed under the loop; test the grown room again
+    }
+  }
 }
 
 RoomAssociation RoomMap::addByCenterDistance(const RoomObservation& observation,
