@@ -49,8 +49,10 @@ struct GicpCloud::Index {
   using Tree =
       nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointsAdaptor>,
                                           PointsAdaptor, 3, uint32_t>;
+  // Leaves of 20 points: a shallower tree builds faster and the searches stay as fast
+  // (bench_gicp: 1-thread alignment 35 -> 31 ms against leaves of 10).
   explicit Index(const std::vector<Eigen::Vector3d>& points)
-      : adaptor{toFloat(points)}, tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
+      : adaptor{toFloat(points)}, tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(20)) {}
   static std::vector<Eigen::Vector3f> toFloat(const std::vector<Eigen::Vector3d>& points) {
     std::vector<Eigen::Vector3f> out(points.size());
     for (size_t i = 0; i < points.size(); ++i) out[i] = points[i].cast<float>();
