@@ -103,16 +103,16 @@ void BackendNode::wallsCallback(const tacs_graphs::WallObservations::ConstPtr& m
 
 void BackendNode::roomsCallback(const tacs_graphs::RoomObservations::ConstPtr& msg) {
   // Rooms arrive associated (room merging runs in room_segmentation) with the backend's wall ids.
-  size_t stored = 0;
   for (const auto& r : msg->rooms) {
+    // Rooms merged into this one leave the graph even if this one cannot be stored yet.
     for (uint32_t absorbed : r.absorbed_room_ids) session_->removeRoom(absorbed);
+    changed_ = changed_ || !r.absorbed_room_ids.empty();
     if (session_->setRoom(fromRoomObservationMsg(r), wallToWallPairs(r))) {
-      ++stored;
+      changed_ = true;
     } else {
       warnings_.warn("room observation", "no facing wall pair in the graph, room not updated");
     }
   }
-  if (stored > 0 || !msg->rooms.empty()) changed_ = true;
 }
 
 void BackendNode::loopCallback(const tacs_graphs::LoopClosure::ConstPtr& msg) {
