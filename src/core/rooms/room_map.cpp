@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace tacs {
 
@@ -46,6 +47,15 @@ bool wallBetween(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
     if (t > 0.0 && t < 1.0 && u >= 0.0 && u <= 1.0) return true;
   }
   return false;
+}
+
+// Share of the smaller of two non-empty cell sets that lies in the other one.
+double smallerShare(const std::unordered_set<int64_t>& a, const std::unordered_set<int64_t>& b) {
+  const auto& small = a.size() < b.size() ? a : b;
+  const auto& large = a.size() < b.size() ? b : a;
+  size_t shared = 0;
+  for (int64_t c : small) shared += large.count(c);
+  return static_cast<double>(shared) / small.size();
 }
 
 }  // namespace
@@ -164,12 +174,8 @@ RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
   for (auto& [id, m] : rooms_) {
     const double axis = axisDistance(m.room, observation);
     const bool aligned = axis >= 0.0 && axis <= config_.max_axis_distance;
-    const auto& small = obs_cells.size() < m.cells.size() ? obs_cells : m.cells;
-    const auto& large = obs_cells.size() < m.cells.size() ? m.cells : obs_cells;
-    if (small.empty()) continue;
-    size_t shared = 0;
-    for (int64_t c : small) shared += large.count(c);
-    const double overlap = static_cast<double>(shared) / small.size();
+    if (obs_cells.empty() || m.cells.empty()) continue;
+    const double overlap = smallerShare(obs_cells, m.cells);
     // The same wall landmarks on every axis both define are the same room even where the two
     // views saw disjoint parts of its free space (a long corridor walked in pieces). Landmarks
     // of one wall plane (a wall broken by wide entrances) count when the views also touch:
@@ -223,15 +229,13 @@ void RoomMap::absorbNestedRooms(const std::map<uint32_t, WallLandmark>& landmark
     MappedRoom& grown = rooms_.at(out->room_id);
     for (auto& [id, other] : rooms_) {
       if (id == grown.id) continue;
+      if (other.cells.empty() || grown.cells.empty() ||
+          smallerShare(other.cells, grown.cells) < config_.nested_overlap) {
+        continue;
+      }
       const bool other_smaller = other.cells.size() <= grown.cells.size();
-      const auto& small = other_smaller ? other.cells : grown.cells;
-      const auto& large = other_smaller ? grown.cells : other.cells;
-      if (small.empty()) continue;
-      size_t shared = 0;
-      for (int64_t c : small) shared += large.count(c);
-      if (static_cast<double>(shared) / small.size() < config_.nested_overlap) continue;
       MappedRoom& keeper = other_smaller ? grown : other;
-      const MappedRoom absorbed = other_smaller ? other : grown;
+      const MappedRoom absorbed = std::move(other_smaller ? other : grown);  // erased below
       RoomAssociation merge;
       mergeInto(&keeper, absorbed.room, /*union_free_space=*/true, landmarks, &merge);
       keeper.observations += absorbed.observations - 1;
