@@ -3,6 +3,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <fstream>
+#include <random>
 
 #include "common/box_room.h"
 #include "common/test_paths.h"
@@ -31,6 +32,63 @@ TEST(PlaneRegularizedCovariance, IsThinAlongTheNormal) {
   EXPECT_NEAR(cov(0, 0), 1.0, 1e-3);
   EXPECT_NEAR(cov(1, 1), 1.0, 1e-3);
   EXPECT_TRUE(planeRegularizedCovariance(points, {0, 1}).isIdentity());
+}
+
+// The closed form (one normal) against the full eigendecomposition it replaces, on tilted noisy
+// patches and on a degenerate line, where the normal is not unique.
+TEST(PlaneRegularizedCovariance, MatchesTheFullEigendecomposition) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  const auto reference = [](const std::vector<Eigen::Vector3d>& pts) {
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& p : pts) mean += p / pts.size();
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const auto& p : pts) cov += (p - mean) * (p - mean).transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    return Eigen::Matrix3d(eig.eigenvectors() * Eigen::Vector3d(1e-3, 1.0, 1.0).asDiagonal() *
+                           eig.eigenvectors().transpose());
+  };
+  for (int trial = 0; trial < 50; ++trial) {
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(0.1 * trial, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).matrix();
+    std::vector<Eigen::Vector3d> points;
+    std::vector<uint32_t> all;
+    for (int i = 0; i < 10; ++i) {
+      points.push_back(R * Eigen::Vector3d(0.1 * (i % 4), 0.13 * (i / 4), noise(rng)) +
+                       Eigen::Vector3d(5.0, -3.0, 1.0));
+      all.push_back(static_cast<uint32_t>(i));
+    }
+    EXPECT_TRUE(planeRegularizedCovariance(points, all).isApprox(reference(points), 1e-6))
+        << "trial " << trial;
+  }
+  std::vector<Eigen::Vector3d> line;
+  for (int i = 0; i < 10; ++i) line.emplace_back(0.1 * i, 0.2 * i, 1.0);
+  const Eigen::Matrix3d cov = planeRegularizedCovariance(line, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9});
+  // Any normal orthogonal to the line will do; the line direction keeps variance 1.
+  const Eigen::Vector3d along = Eigen::Vector3d(1.0, 2.0, 0.0).normalized();
+  EXPECT_NEAR(along.dot(cov * along), 1.0, 1e-9);
+  EXPECT_TRUE(cov.isApprox(cov.transpose()));
+}
+
+// A hint (right, wrong, out of range) never changes the answer of the nearest-point search.
+TEST(GicpCloud, NearestWithAHintIsTheExactNearest) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> coord(-5.0, 5.0);
+  std::vector<Eigen::Vector3d> points(2000);
+  for (auto& p : points) p = Eigen::Vector3d(coord(rng), coord(rng), coord(rng));
+  const GicpCloud::ConstPtr cloud = GicpCloud::build(points, 10, 1);
+  for (int q = 0; q < 500; ++q) {
+    const Eigen::Vector3d query(coord(rng), coord(rng), coord(rng));
+    double plain_sq = 0.0;
+    const int64_t plain = cloud->nearest(query, 1.0, &plain_sq);
+    for (int64_t hint : {plain, int64_t{q}, int64_t{-1}, int64_t{5000}}) {
+      double hinted_sq = 0.0;
+      EXPECT_EQ(cloud->nearest(query, 1.0, &hinted_sq, hint), plain) << "hint " << hint;
+      if (plain >= 0) {
+        EXPECT_FLOAT_EQ(hinted_sq, plain_sq);
+      }
+    }
+  }
 }
 
 TEST(Gicp, RecoversAKnownMotionInASyntheticRoom) {

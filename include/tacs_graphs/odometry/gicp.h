@@ -53,7 +53,10 @@ class GicpCloud {
   const std::vector<Eigen::Matrix3d>& covariances() const { return covariances_; }
 
   /// Index of the nearest point closer than sqrt(max_dist_sq), or -1; its squared distance.
-  int64_t nearest(const Eigen::Vector3d& query, double max_dist_sq, double* dist_sq) const;
+  /// A hint (a likely answer, e.g. the last iteration's) shrinks the search radius; the result
+  /// is the exact nearest point either way.
+  int64_t nearest(const Eigen::Vector3d& query, double max_dist_sq, double* dist_sq,
+                  int64_t hint = -1) const;
   /// Up to k nearest points (fewer when the cloud is smaller), closest first.
   void knn(const Eigen::Vector3d& query, int k, std::vector<uint32_t>* indices,
            std::vector<double>* dist_sq) const;
@@ -108,7 +111,8 @@ class Gicp {
 
  private:
   struct Linearization;
-  Linearization linearize(const Pose3& T) const;
+  /// `previous`: the last linearisation (or null); its pairs seed the nearest-point searches.
+  Linearization linearize(const Pose3& T, const Linearization* previous) const;
   void fillScores(const Linearization& lin, GicpResult* result) const;
 
   GicpConfig config_;

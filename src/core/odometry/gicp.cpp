@@ -83,7 +83,7 @@ void Gicp::setSource(const PointCloud& cloud) {
 }
 void Gicp::setSource(GicpCloud::ConstPtr source) { source_ = std::move(source); }
 
-Gicp::Linearization Gicp::linearize(const Pose3& T) const {
+Gicp::Linearization Gicp::linearize(const Pose3& T, const Linearization* previous) const {
   const auto& src = source_->points();
   const auto& src_cov = source_->covariances();
   const auto& tgt = target_->points();
@@ -92,11 +92,14 @@ Gicp::Linearization Gicp::linearize(const Pose3& T) const {
   const double max_sq =
       config_.max_correspondence_distance_m * config_.max_correspondence_distance_m;
   std::vector<Correspondence> pairs(src.size());
+  // Between iterations a point's nearest target rarely moves far: the last one bounds the search.
+  const std::vector<Correspondence>* hints =
+      previous && previous->pairs.size() == src.size() ? &previous->pairs : nullptr;
   Linearization lin = parallelReduce<Linearization>(
       static_cast<int64_t>(src.size()), config_.num_threads, [&](int64_t i, Linearization& acc) {
         const Eigen::Vector3d p = T * src[i];
         double dist_sq = 0.0;
-        const int64_t j = target_->nearest(p, max_sq, &dist_sq);
+        const int64_t j = target_->nearest(p, max_sq, &dist_sq, hints ? (*hints)[i].target : -1);
         Correspondence& c = pairs[i];
         c.target = j;
         if (j < 0) return;
@@ -129,7 +132,7 @@ GicpResult Gicp::evaluate(const Pose3& T_target_source) const {
   GicpResult result;
   result.T_target_source = T_target_source;
   if (target_ && source_ && !target_->empty() && !source_->empty()) {
-    fillScores(linearize(T_target_source), &result);
+    fillScores(linearize(T_target_source, nullptr), &result);
   }
   result.time_ms = watch.elapsedMs();
   return result;
@@ -148,7 +151,7 @@ GicpResult Gicp::align(const Pose3& initial_guess) const {
   const double rot_eps = config_.rotation_eps_deg * M_PI / 180.0;
 
   Pose3 T = initial_guess;
-  Linearization lin = linearize(T);
+  Linearization lin = linearize(T, nullptr);
   double lambda = -1.0;
   for (int iter = 0; iter < config_.max_iterations && lin.inliers >= 6; ++iter) {
     result.iterations = iter + 1;
@@ -179,7 +182,7 @@ GicpResult Gicp::align(const Pose3& initial_guess) const {
       result.converged = true;
       break;
     }
-    lin = linearize(T);
+    lin = linearize(T, &lin);
     if (delta.head<3>().norm() < config_.translation_eps_m && delta.tail<3>().norm() < rot_eps) {
       result.converged = true;
       break;

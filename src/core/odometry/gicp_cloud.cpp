@@ -1,4 +1,6 @@
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <nanoflann.hpp>
 
@@ -25,6 +27,7 @@ struct PointsAdaptor {
 class NearestWithin {
  public:
   explicit NearestWithin(float max_dist_sq) : worst_(max_dist_sq) {}
+  NearestWithin(float dist_sq, uint32_t index) : worst_(dist_sq), index_(index), found_(true) {}
   bool addPoint(float dist, uint32_t index) {
     if (dist < worst_) {
       worst_ = dist;
@@ -77,10 +80,25 @@ Eigen::Matrix3d planeRegularizedCovariance(const std::vector<Eigen::Vector3d>& p
     const Eigen::Vector3d d = points[j] - mean;
     cov.noalias() += d * d.transpose();
   }
+  // V diag(1e-3, 1, 1) V^T = I - (1 - 1e-3) n n^T with n the plane normal (the eigenvector of the
+  // smallest eigenvalue), so only that one vector is needed: it is orthogonal to the rows of
+  // cov - lambda_min I, hence their largest cross product.
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-  eig.computeDirect(cov);  // eigenvalues ascending: the first vector is the plane normal
-  const Eigen::Vector3d values(1e-3, 1.0, 1.0);
-  return eig.eigenvectors() * values.asDiagonal() * eig.eigenvectors().transpose();
+  eig.computeDirect(cov, Eigen::EigenvaluesOnly);
+  const Eigen::Matrix3d shifted = cov - eig.eigenvalues()[0] * Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d c01 = shifted.row(0).cross(shifted.row(1));
+  const Eigen::Vector3d c02 = shifted.row(0).cross(shifted.row(2));
+  const Eigen::Vector3d c12 = shifted.row(1).cross(shifted.row(2));
+  const double n01 = c01.squaredNorm(), n02 = c02.squaredNorm(), n12 = c12.squaredNorm();
+  const double best = std::max({n01, n02, n12});
+  Eigen::Vector3d normal;
+  if (best > 1e-12 * std::pow(cov.trace(), 4)) {
+    normal = (best == n01 ? c01 : best == n02 ? c02 : c12) / std::sqrt(best);
+  } else {  // the two smallest eigenvalues (nearly) coincide: a line or a blob, no unique normal
+    eig.computeDirect(cov);
+    normal = eig.eigenvectors().col(0);
+  }
+  return Eigen::Matrix3d::Identity() - (1.0 - 1e-3) * normal * normal.transpose();
 }
 
 GicpCloud::ConstPtr GicpCloud::build(const PointCloud& cloud, int k_neighbors, int num_threads) {
@@ -121,11 +139,17 @@ GicpCloud::ConstPtr GicpCloud::fromParts(std::vector<Eigen::Vector3d> points,
   return cloud;
 }
 
-int64_t GicpCloud::nearest(const Eigen::Vector3d& query, double max_dist_sq,
-                           double* dist_sq) const {
+int64_t GicpCloud::nearest(const Eigen::Vector3d& query, double max_dist_sq, double* dist_sq,
+                           int64_t hint) const {
   if (points_.empty()) return -1;
   const Eigen::Vector3f q = query.cast<float>();
   NearestWithin result(static_cast<float>(max_dist_sq));
+  if (hint >= 0 && static_cast<size_t>(hint) < points_.size()) {
+    // Strictly closer points only are taken after this, so the bound must be the hint's own
+    // distance in the tree's float arithmetic.
+    const float hint_sq = (index_->adaptor.points[hint] - q).squaredNorm();
+    if (hint_sq < max_dist_sq) result = NearestWithin(hint_sq, static_cast<uint32_t>(hint));
+  }
   index_->tree.findNeighbors(result, q.data(), nanoflann::SearchParams());
   if (dist_sq) *dist_sq = result.worstDist();
   return result.index();
