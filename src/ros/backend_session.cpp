@@ -102,7 +102,10 @@ MappedRoom roomFromJson(const nlohmann::json& j) {
 }  // namespace
 
 BackendSession::BackendSession(const PipelineConfig& config, const BackendSessionOptions& options)
-    : config_(config), options_(options), backend_(config.backend, config.walls.association) {}
+    : config_(config),
+      options_(options),
+      backend_(config.backend, config.walls.association),
+      cloud_retention_(config.map_export.cloud_retention) {}
 
 BackendSession::Outcome BackendSession::addKeyframe(uint32_t id, double stamp,
                                                     const Pose3& T_odom_base,
@@ -111,6 +114,11 @@ BackendSession::Outcome BackendSession::addKeyframe(uint32_t id, double stamp,
   if (backend_.hasKeyframe(id)) return Outcome::kDuplicate;
   backend_.addKeyframe(id, stamp, T_odom_base, information);
   if (cloud) clouds_[id] = cloud;
+  if (const auto released = cloud_retention_.add(id, [this](uint32_t k) -> Eigen::Vector3d {
+        return backend_.keyframePose(k).translation();
+      })) {
+    clouds_.erase(*released);
+  }
   newest_keyframe_ = std::max(newest_keyframe_, id);
   journal_keyframes_.push_back({{"id", id},
                                 {"stamp", stamp},

@@ -43,6 +43,35 @@ TEST(LoopClosureDistance, CandidatesAreNearInXyAndFarBackAlongThePath) {
   EXPECT_LT(test::rotationErrorDeg(loop.T_from_to, truth), 0.5);
 }
 
+// Out, back and out again along the same line: the clouds of the later passes are released
+// (one cloud per place in this test), so only the first pass's keyframes are candidates.
+TEST(LoopClosureDistance, ReleasedCloudsAreNoCandidates) {
+  const auto outBackOut = [](uint32_t id) {
+    return id <= 16 ? outAndBack(id) : roomPose(id - 15.0, 3.5, 0.0);
+  };
+  const test::BoxRoom room;
+  LoopClosureConfig config;
+  config.method = "distance";
+  config.cloud_retention.place_radius_m = 0.6;
+  config.cloud_retention.max_clouds_per_place = 1;
+  config.cloud_retention.min_age_keyframes = 2;
+  LoopDetector detector(config);
+  for (uint32_t id = 0; id <= 24; ++id) {
+    test::addRoomKeyframe(&detector, room, id, outBackOut(id), outBackOut(id));
+  }
+  // Ids 9..22 stand where a first-pass keyframe stands; 23 and 24 are still young.
+  EXPECT_EQ(detector.keyframeCount(), 25u);
+  EXPECT_EQ(detector.cloudCount(), 11u);
+  // Keyframe 24 (x = 9, 24 m travelled): x = 6..9 within 3 m and far enough back are ids 5..8
+  // of the first pass and ids 9..11 of the way back, whose clouds are gone.
+  const LoopDetection d = detector.detectByDistance(24);
+  std::vector<uint32_t> candidates = d.candidates;
+  std::sort(candidates.begin(), candidates.end());
+  EXPECT_EQ(candidates, (std::vector<uint32_t>{5, 6, 7, 8}));
+  ASSERT_EQ(d.loops.size(), 1u);
+  EXPECT_LE(d.loops.front().from, 8u);
+}
+
 TEST(LoopClosureDistance, WaitsMinEdgeIntervalAfterALoop) {
   const test::BoxRoom room;
   LoopClosureConfig config;

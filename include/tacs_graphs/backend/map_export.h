@@ -5,16 +5,18 @@
 #include <map>
 #include <string>
 
+#include "tacs_graphs/common/cloud_retention.h"
 #include "tacs_graphs/common/types.h"
 #include "tacs_graphs/scene_graph/scene_graph.h"
 
 namespace tacs {
 
 struct MapExportConfig {
-  double cloud_voxel_m = 0.1;          // voxel size of map.pcd and /tacs/map_points [m]
-  double octomap_resolution_m = 0.1;   // leaf size of map.bt [m]
-  double octomap_max_range_m = 15.0;   // rays longer than this only mark free space so far [m]
-  double topdown_resolution_m = 0.05;  // metres per pixel of topdown.png
+  double cloud_voxel_m = 0.1;            // voxel size of map.pcd and /tacs/map_points [m]
+  double octomap_resolution_m = 0.1;     // leaf size of map.bt [m]
+  double octomap_max_range_m = 15.0;     // rays longer than this only mark free space so far [m]
+  double topdown_resolution_m = 0.05;    // metres per pixel of topdown.png
+  CloudRetentionConfig cloud_retention;  // keyframe clouds kept per place for the map
 
   template <class V>
   void visit(V& v) {
@@ -22,6 +24,7 @@ struct MapExportConfig {
     v("octomap_resolution_m", octomap_resolution_m);
     v("octomap_max_range_m", octomap_max_range_m);
     v("topdown_resolution_m", topdown_resolution_m);
+    v("cloud_retention", cloud_retention);
   }
   void validate() const;
 };

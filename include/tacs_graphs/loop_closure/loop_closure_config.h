@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "tacs_graphs/common/cloud_retention.h"
+
 namespace tacs {
 
 /// Keyframe preparation and the GICP settings shared by both detectors.
@@ -93,6 +95,7 @@ struct LoopClosureConfig {
   LoopRegistrationConfig registration;
   CosgLoopConfig cosg;
   DistanceLoopConfig distance;
+  CloudRetentionConfig cloud_retention;  // candidate clouds kept per place over long runs
 
   template <class V>
   void visit(V& v) {
@@ -100,6 +103,7 @@ struct LoopClosureConfig {
     v("registration", registration);
     v("cosg", cosg);
     v("distance", distance);
+    v("cloud_retention", cloud_retention);
   }
   void validate() const;
 };

@@ -77,12 +77,16 @@ class LoopDetector {
   explicit LoopDetector(const LoopClosureConfig& config);
 
   /// Stores a keyframe: its current map-frame pose estimate and its (downsampled) cloud in the
-  /// base frame, prepared for GICP once. Re-adding an id replaces it.
+  /// base frame, prepared for GICP once. Re-adding an id replaces it. The clouds of old keyframes
+  /// at places that hold enough clouds already are released (config cloud_retention); such
+  /// keyframes still count in room extents but are no loop candidates.
   void addKeyframe(uint32_t id, double stamp, const Pose3& T_map_base, const PointCloud& cloud);
   /// New pose estimates (e.g. after an optimisation); unknown ids are ignored.
   void updatePoses(const std::map<uint32_t, Pose3>& T_map_base);
   bool hasKeyframe(uint32_t id) const { return keyframes_.count(id) > 0; }
   size_t keyframeCount() const { return keyframes_.size(); }
+  /// Keyframes whose clouds are held (loop candidates).
+  size_t cloudCount() const { return retention_.keptCount(); }
   /// Travelled distance along the added poses up to keyframe `id` [m] (0 when unknown).
   double accumulatedDistance(uint32_t id) const;
 
@@ -122,6 +126,7 @@ class LoopDetector {
 
   LoopClosureConfig config_;
   std::map<uint32_t, Keyframe> keyframes_;
+  CloudRetention retention_;
   uint32_t last_added_ = 0;
   bool any_added_ = false;
   double last_distance_loop_accum_ = -1.0;  // accum distance of the last baseline loop; < 0: none

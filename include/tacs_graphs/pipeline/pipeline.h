@@ -97,6 +97,7 @@ class Pipeline {
   PipelineStats stats_;
   Trajectory odometry_;
   KeyframeClouds keyframe_clouds_;
+  CloudRetention map_cloud_retention_;
   StageTimes stage_times_;
 };
 

@@ -19,6 +19,7 @@ void MapExportConfig::validate() const {
   requireConfig(octomap_resolution_m > 0, "map_export.octomap_resolution_m", "must be > 0");
   requireConfig(octomap_max_range_m > 0, "map_export.octomap_max_range_m", "must be > 0");
   requireConfig(topdown_resolution_m > 0, "map_export.topdown_resolution_m", "must be > 0");
+  cloud_retention.validate("map_export.cloud_retention.");
 }
 
 PointCloud buildMapCloud(const SceneGraph& graph, const KeyframeClouds& clouds, double voxel_m) {

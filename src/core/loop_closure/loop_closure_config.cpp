@@ -54,6 +54,7 @@ void LoopClosureConfig::validate() const {
   registration.validate();
   cosg.validate();
   distance.validate();
+  cloud_retention.validate("loop_closure.cloud_retention.");
 }
 
 }  // namespace tacs

@@ -40,7 +40,8 @@ const char* loopPathName(LoopPath path) {
   return "?";
 }
 
-LoopDetector::LoopDetector(const LoopClosureConfig& config) : config_(config) {
+LoopDetector::LoopDetector(const LoopClosureConfig& config)
+    : config_(config), retention_(config.cloud_retention) {
   config_.validate();
 }
 
@@ -66,9 +67,19 @@ void LoopDetector::addKeyframe(uint32_t id, double stamp, const Pose3& T_map_bas
       kf.scored_points.push_back(static_cast<uint32_t>(i));
     }
   }
+  const bool is_new = keyframes_.count(id) == 0;
   keyframes_[id] = std::move(kf);
   last_added_ = id;
   any_added_ = true;
+  if (!is_new) return;
+  const auto position_of = [this](uint32_t k) -> Eigen::Vector3d {
+    return keyframes_.at(k).T_map_base.translation();
+  };
+  if (const auto released = retention_.add(id, position_of)) {
+    Keyframe& old = keyframes_.at(*released);
+    old.cloud.reset();
+    std::vector<uint32_t>().swap(old.scored_points);
+  }
 }
 
 void LoopDetector::updatePoses(const std::map<uint32_t, Pose3>& T_map_base) {
@@ -187,6 +198,7 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
   Stopwatch watch;
   auto query_it = keyframes_.find(query_id);
   if (query_it == keyframes_.end()) return skipped("unknown query keyframe", watch);
+  if (!query_it->second.cloud) return skipped("the query keyframe's cloud was released", watch);
   LoopDetection det;
   const Keyframe& query = query_it->second;
   const CosgLoopConfig& cc = config_.cosg;
@@ -212,7 +224,7 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
     for (size_t i = 0; i < room.size(); ++i) {
       if (parts.index_of[i] != parts.selected[s]) continue;
       const Keyframe& cand = keyframes_.at(room[i]);
-      if (isRecent(cand, room[i], query, query_id)) continue;
+      if (!cand.cloud || isRecent(cand, room[i], query, query_id)) continue;
       const double d = (cand.T_map_base.translation() - q_pos).norm();
       if (d <= cc.d_loop_m) near.emplace_back(d, room[i]);
     }

@@ -12,6 +12,7 @@ LoopDetection LoopDetector::detectByDistance(uint32_t query_id) {
   Stopwatch watch;
   auto query_it = keyframes_.find(query_id);
   if (query_it == keyframes_.end()) return skipped("unknown query keyframe", watch);
+  if (!query_it->second.cloud) return skipped("the query keyframe's cloud was released", watch);
   LoopDetection det;
   const Keyframe& query = query_it->second;
   const DistanceLoopConfig& dc = config_.distance;
@@ -23,7 +24,7 @@ LoopDetection LoopDetector::detectByDistance(uint32_t query_id) {
   const Eigen::Vector2d q_xy = query.T_map_base.translation().head<2>();
   std::optional<Registration> best;
   for (const auto& [id, cand] : keyframes_) {
-    if (id == query_id) continue;
+    if (id == query_id || !cand.cloud) continue;
     // Far enough back along the path that the pair is a revisit, not a neighbour.
     if (query.accum_distance - cand.accum_distance <= dc.accum_distance_m) continue;
     if ((cand.T_map_base.translation().head<2>() - q_xy).norm() > dc.distance_threshold_m) {
