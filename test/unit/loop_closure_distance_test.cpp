@@ -53,7 +53,7 @@ TEST(LoopClosureDistance, ReleasedCloudsAreNoCandidates) {
   LoopClosureConfig config;
   config.method = "distance";
   config.cloud_retention.place_radius_m = 0.6;
-  config.cloud_retention.max_clouds_per_place = 1;
+  config.cloud_retention.max_keyframes_per_place = 1;
   config.cloud_retention.min_age_keyframes = 2;
   LoopDetector detector(config);
   for (uint32_t id = 0; id <= 24; ++id) {

@@ -158,5 +158,27 @@ TEST_F(TraversableMapTest, UpdatePosesAndReinsertRebuild) {
   EXPECT_TRUE(map.graph().nodes.empty());
 }
 
+// A robot parked at one place for many keyframes: the map keeps the local graphs of
+// max_keyframes_per_place old keyframes plus the young ones, and the merged graph is the same.
+TEST_F(TraversableMapTest, RevisitsOfAPlaceKeepABoundedNumberOfLocalGraphs) {
+  TraversabilityConfig config;
+  config.map_retention.max_keyframes_per_place = 3;
+  config.map_retention.min_age_keyframes = 5;
+  TraversableMap map{config};
+  const ScanRun& run = (*runs_)[0];
+  std::map<uint32_t, Pose3> poses;
+  for (uint32_t id = 0; id < 30; ++id) {
+    map.insert(run.result.graph, run.T_world_base, id);
+    poses[id] = run.T_world_base;
+  }
+  EXPECT_EQ(map.keyframeCount(), 3u + 5u);
+  map.updatePoses(poses);  // rebuilds from the kept local graphs only
+  TraversableMap single{config};
+  single.insert(run.result.graph, run.T_world_base, 0);
+  ASSERT_EQ(map.graph().nodes.size(), single.graph().nodes.size());
+  EXPECT_EQ(map.graph().edges, single.graph().edges);
+  EXPECT_EQ(map.observations(0), 8u * single.observations(0));  // 8 local graphs merged
+}
+
 }  // namespace
 }  // namespace tacs

@@ -5,7 +5,7 @@
 #include <map>
 #include <string>
 
-#include "tacs_graphs/common/cloud_retention.h"
+#include "tacs_graphs/common/keyframe_retention.h"
 #include "tacs_graphs/common/types.h"
 #include "tacs_graphs/scene_graph/scene_graph.h"
 
@@ -16,7 +16,7 @@ struct MapExportConfig {
   double octomap_resolution_m = 0.1;     // leaf size of map.bt [m]
   double octomap_max_range_m = 15.0;     // rays longer than this only mark free space so far [m]
   double topdown_resolution_m = 0.05;    // metres per pixel of topdown.png
-  CloudRetentionConfig cloud_retention;  // keyframe clouds kept per place for the map
+  KeyframeRetentionConfig cloud_retention;  // keyframe clouds kept per place for the map
 
   template <class V>
   void visit(V& v) {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "tacs_graphs/common/cloud_retention.h"
+#include "tacs_graphs/common/keyframe_retention.h"
 
 namespace tacs {
 
@@ -95,7 +95,7 @@ struct LoopClosureConfig {
   LoopRegistrationConfig registration;
   CosgLoopConfig cosg;
   DistanceLoopConfig distance;
-  CloudRetentionConfig cloud_retention;  // candidate clouds kept per place over long runs
+  KeyframeRetentionConfig cloud_retention;  // candidate clouds kept per place over long runs
 
   template <class V>
   void visit(V& v) {

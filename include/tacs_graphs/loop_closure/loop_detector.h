@@ -126,7 +126,7 @@ class LoopDetector {
 
   LoopClosureConfig config_;
   std::map<uint32_t, Keyframe> keyframes_;
-  CloudRetention retention_;
+  KeyframeRetention retention_;
   uint32_t last_added_ = 0;
   bool any_added_ = false;
   double last_distance_loop_accum_ = -1.0;  // accum distance of the last baseline loop; < 0: none

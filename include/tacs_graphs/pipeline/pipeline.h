@@ -97,7 +97,7 @@ class Pipeline {
   PipelineStats stats_;
   Trajectory odometry_;
   KeyframeClouds keyframe_clouds_;
-  CloudRetention map_cloud_retention_;
+  KeyframeRetention map_cloud_retention_;
   StageTimes stage_times_;
 };
 

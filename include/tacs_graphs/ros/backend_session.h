@@ -81,7 +81,7 @@ class BackendSession {
   BackendSessionOptions options_;
   Backend backend_;
   KeyframeClouds clouds_;
-  CloudRetention cloud_retention_;
+  KeyframeRetention cloud_retention_;
   PointCloud::Ptr recovered_map_;
   std::map<uint32_t, std::vector<WallSegment>> pending_walls_;
   std::vector<std::pair<LoopEdge, Matrix6d>> pending_loops_;

@@ -2,6 +2,8 @@
 // documented key by key in config/default.yaml).
 #pragma once
 
+#include "tacs_graphs/common/keyframe_retention.h"
+
 namespace tacs {
 
 /// Parameters of the tri-grid terrain model (B-TMS style, paper Sec. II-C and III-A), the BGK
@@ -44,8 +46,9 @@ struct TraversabilityConfig {
   int clearance_subdivision = 4;    // obstacle distance grid cells per tri-grid cell edge [-]
   double tilt_warning_deg = 5.0;    // warn when the ground near the robot tilts more [deg]
   // --- map accumulation (TraversableMap)
-  double map_resolution = 0.2;    // cell of the map-frame node hash [m]
-  double map_merge_height = 0.3;  // nodes of one hash cell closer in z are merged [m]
+  double map_resolution = 0.2;            // cell of the map-frame node hash [m]
+  double map_merge_height = 0.3;          // nodes of one hash cell closer in z are merged [m]
+  KeyframeRetentionConfig map_retention;  // keyframe graphs kept per place over long runs
 
   template <class V>
   void visit(V& v) {
@@ -80,9 +83,12 @@ struct TraversabilityConfig {
     v("tilt_warning_deg", tilt_warning_deg);
     v("map_resolution", map_resolution);
     v("map_merge_height", map_merge_height);
+    v("map_retention", map_retention);
   }
   /// Throws ConfigError naming the field ("traversability.<field>: ...").
   void validate() const;
 };
 
 }  // namespace tacs
+
+#include "tacs_graphs/common/keyframe_retention.h"

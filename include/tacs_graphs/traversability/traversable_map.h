@@ -42,6 +42,7 @@ class TraversableMap {
 
   /// The merged graph in the map frame (root = -1).
   const TravGraph& graph() const { return graph_; }
+  /// Keyframes whose local graphs are held (the others were released by map_retention).
   size_t keyframeCount() const { return keyframes_.size(); }
   /// Number of keyframe observations merged into node i.
   uint32_t observations(uint32_t i) const { return stats_[i].observations; }
@@ -79,6 +80,7 @@ class TraversableMap {
 
   TraversabilityConfig config_;
   std::map<uint32_t, Keyframe> keyframes_;
+  KeyframeRetention retention_;
   TravGraph graph_;
   std::vector<Stats> stats_;
   std::unordered_map<int64_t, std::vector<uint32_t>> cells_;

@@ -51,6 +51,7 @@ void TraversabilityConfig::validate() const {
   requireConfig(tilt_warning_deg > 0, field("tilt_warning_deg"), "must be > 0");
   requireConfig(map_resolution > 0, field("map_resolution"), "must be > 0");
   requireConfig(map_merge_height > 0, field("map_merge_height"), "must be > 0");
+  map_retention.validate(field("map_retention."));
 }
 
 }  // namespace tacs

@@ -58,12 +58,14 @@ std::vector<uint32_t> floodFill(const std::vector<std::vector<uint32_t>>& adj, u
 
 }  // namespace
 
-TraversableMap::TraversableMap(const TraversabilityConfig& config) : config_(config) {
+TraversableMap::TraversableMap(const TraversabilityConfig& config)
+    : config_(config), retention_(config.map_retention) {
   config_.validate();
 }
 
 void TraversableMap::clear() {
   keyframes_.clear();
+  retention_ = KeyframeRetention(config_.map_retention);
   rebuild();
 }
 
@@ -75,9 +77,15 @@ void TraversableMap::insert(const TravGraph& graph_in_base, const Pose3& T_map_b
   kf.graph = withoutUnknown(graph_in_base);
   if (replacing) {
     rebuild();
-  } else {
-    merge(kf, keyframe_id);
+    return;
   }
+  merge(kf, keyframe_id);
+  // A released keyframe's nodes stay merged until the next rebuild, which leaves them out: the
+  // keyframes kept at its place saw the same surroundings.
+  const auto position_of = [this](uint32_t k) -> Eigen::Vector3d {
+    return keyframes_.at(k).T_map_base.translation();
+  };
+  if (const auto released = retention_.add(keyframe_id, position_of)) keyframes_.erase(*released);
 }
 
 void TraversableMap::updatePoses(const std::map<uint32_t, Pose3>& poses) {

@@ -1,5 +1,5 @@
-// Keyframe clouds kept per place over long runs (common/cloud_retention.h).
-#include "tacs_graphs/common/cloud_retention.h"
+// Keyframe clouds kept per place over long runs (common/keyframe_retention.h).
+#include "tacs_graphs/common/keyframe_retention.h"
 
 #include <gtest/gtest.h>
 
@@ -25,8 +25,8 @@ struct LapRun {
   std::map<uint32_t, bool> released;
 };
 
-LapRun driveLaps(const CloudRetentionConfig& config, int laps) {
-  CloudRetention retention(config);
+LapRun driveLaps(const KeyframeRetentionConfig& config, int laps) {
+  KeyframeRetention retention(config);
   LapRun run;
   for (uint32_t id = 0; id < static_cast<uint32_t>(120 * laps); ++id) {
     if (const auto released = retention.add(id, lapPosition)) {
@@ -39,14 +39,14 @@ LapRun driveLaps(const CloudRetentionConfig& config, int laps) {
   return run;
 }
 
-TEST(CloudRetention, KeepsEveryCloudOfTheFirstPass) {
-  const LapRun run = driveLaps(CloudRetentionConfig(), 1);
+TEST(KeyframeRetention, KeepsEveryCloudOfTheFirstPass) {
+  const LapRun run = driveLaps(KeyframeRetentionConfig(), 1);
   EXPECT_TRUE(run.released.empty());
   EXPECT_EQ(run.kept_after_lap[1], 120u);
 }
 
-TEST(CloudRetention, StopsGrowingOnceThePlacesHoldEnoughClouds) {
-  const CloudRetentionConfig config;  // 8 clouds within 1 m: about two passes at 0.5 m spacing
+TEST(KeyframeRetention, StopsGrowingOnceThePlacesHoldEnoughClouds) {
+  const KeyframeRetentionConfig config;  // 8 clouds within 1 m: about two passes at 0.5 m spacing
   const LapRun run = driveLaps(config, 5);
   // Laps 3-5 add keyframes at places that hold two passes already: the count stays flat.
   EXPECT_GT(run.kept_after_lap[2], 200u);
@@ -56,16 +56,16 @@ TEST(CloudRetention, StopsGrowingOnceThePlacesHoldEnoughClouds) {
   for (const auto& [id, released] : run.released) EXPECT_GE(id, 120u);
 }
 
-TEST(CloudRetention, ZeroKeepsEveryCloud) {
-  CloudRetentionConfig config;
-  config.max_clouds_per_place = 0;
+TEST(KeyframeRetention, ZeroKeepsEveryCloud) {
+  KeyframeRetentionConfig config;
+  config.max_keyframes_per_place = 0;
   const LapRun run = driveLaps(config, 3);
   EXPECT_TRUE(run.released.empty());
   EXPECT_EQ(run.kept_after_lap[3], 360u);
 }
 
-TEST(CloudRetention, RejectsBadSettingsNamingTheKey) {
-  CloudRetentionConfig config;
+TEST(KeyframeRetention, RejectsBadSettingsNamingTheKey) {
+  KeyframeRetentionConfig config;
   config.place_radius_m = 0.0;
   try {
     config.validate("map_export.cloud_retention.");

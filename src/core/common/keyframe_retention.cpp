@@ -1,24 +1,24 @@
-#include "tacs_graphs/common/cloud_retention.h"
+#include "tacs_graphs/common/keyframe_retention.h"
 
 #include "tacs_graphs/common/config.h"
 
 namespace tacs {
 
-void CloudRetentionConfig::validate(const std::string& section) const {
+void KeyframeRetentionConfig::validate(const std::string& section) const {
   requireConfig(place_radius_m > 0.0, section + "place_radius_m", "must be > 0");
-  requireConfig(max_clouds_per_place >= 0, section + "max_clouds_per_place",
-                "must be >= 0 (0 keeps every cloud)");
+  requireConfig(max_keyframes_per_place >= 0, section + "max_keyframes_per_place",
+                "must be >= 0 (0 keeps everything)");
   requireConfig(min_age_keyframes >= 0, section + "min_age_keyframes", "must be >= 0");
 }
 
-CloudRetention::CloudRetention(const CloudRetentionConfig& config) : config_(config) {}
+KeyframeRetention::KeyframeRetention(const KeyframeRetentionConfig& config) : config_(config) {}
 
-std::optional<uint32_t> CloudRetention::add(uint32_t id, const PositionOf& position_of) {
+std::optional<uint32_t> KeyframeRetention::add(uint32_t id, const PositionOf& position_of) {
   young_.push_back(id);
   if (young_.size() <= static_cast<size_t>(config_.min_age_keyframes)) return std::nullopt;
   const uint32_t aged = young_.front();
   young_.pop_front();
-  if (config_.max_clouds_per_place == 0) {
+  if (config_.max_keyframes_per_place == 0) {
     kept_old_.push_back(aged);
     return std::nullopt;
   }
@@ -29,7 +29,7 @@ std::optional<uint32_t> CloudRetention::add(uint32_t id, const PositionOf& posit
   int nearby = 0;
   for (uint32_t other : kept_old_) {
     if ((position_of(other) - p).squaredNorm() <= radius_sq &&
-        ++nearby >= config_.max_clouds_per_place) {
+        ++nearby >= config_.max_keyframes_per_place) {
       ++dropped_;
       return aged;
     }
