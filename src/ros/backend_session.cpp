@@ -120,10 +120,12 @@ BackendSession::Outcome BackendSession::addKeyframe(uint32_t id, double stamp,
     clouds_.erase(*released);
   }
   newest_keyframe_ = std::max(newest_keyframe_, id);
-  journal_keyframes_.push_back({{"id", id},
-                                {"stamp", stamp},
-                                {"odom_pose", poseToJson(T_odom_base)},
-                                {"information", matrixToJson(information)}});
+  journal_keyframes_.push_back(nlohmann::json{
+      {"id", id},
+      {"stamp", stamp},
+      {"odom_pose", poseToJson(T_odom_base)},
+      {"information",
+       matrixToJson(information)}}.dump());
   flushPending(id);
   dropStalePending();
   return Outcome::kAdded;
@@ -143,7 +145,7 @@ BackendSession::Outcome BackendSession::addWalls(uint32_t keyframe_id,
   backend_.addWallObservations(keyframe_id, walls);
   nlohmann::json entry = {{"keyframe", keyframe_id}, {"walls", nlohmann::json::array()}};
   for (const WallSegment& w : walls) entry["walls"].push_back(wallToJson(w));
-  journal_walls_.push_back(entry);
+  journal_walls_.push_back(entry.dump());
   return Outcome::kAdded;
 }
 
@@ -153,11 +155,12 @@ BackendSession::Outcome BackendSession::addLoop(const LoopEdge& edge, const Matr
     return Outcome::kBuffered;
   }
   backend_.addLoopClosure(edge.from, edge.to, edge.relativePose(), information, edge.score);
-  journal_loops_.push_back({{"from", edge.from},
-                            {"to", edge.to},
-                            {"relative_pose", poseToJson(edge.relativePose())},
-                            {"information", matrixToJson(information)},
-                            {"score", edge.score}});
+  journal_loops_.push_back(nlohmann::json{
+      {"from", edge.from},
+      {"to", edge.to},
+      {"relative_pose", poseToJson(edge.relativePose())},
+      {"information", matrixToJson(information)},
+      {"score", edge.score}}.dump());
   return Outcome::kAdded;
 }
 
@@ -218,15 +221,22 @@ PointCloud BackendSession::mapCloud(double voxel_m) const {
   return cloud;
 }
 
-nlohmann::json BackendSession::journal() const {
+nlohmann::json BackendSession::journal() const { return nlohmann::json::parse(journalText()); }
+
+std::string BackendSession::journalText() const {
+  const auto array = [](const std::vector<std::string>& entries) {
+    std::string out = "[";
+    for (size_t i = 0; i < entries.size(); ++i) {
+      if (i > 0) out += ',';
+      out += entries[i];
+    }
+    return out + "]";
+  };
   nlohmann::json rooms = nlohmann::json::array();
   for (const auto& [id, room] : journal_rooms_) rooms.push_back(room);
-  return {{"format", "tacs_graphs/backend_journal"},
-          {"version", 1},
-          {"keyframes", journal_keyframes_},
-          {"walls", journal_walls_},
-          {"loops", journal_loops_},
-          {"rooms", rooms}};
+  return "{\"format\":\"tacs_graphs/backend_journal\",\"version\":1,\"keyframes\":" +
+         array(journal_keyframes_) + ",\"walls\":" + array(journal_walls_) +
+         ",\"loops\":" + array(journal_loops_) + ",\"rooms\":" + rooms.dump() + "}";
 }
 
 void BackendSession::save(const std::string& dir, const MapExportConfig& map_config) const {
@@ -235,7 +245,7 @@ void BackendSession::save(const std::string& dir, const MapExportConfig& map_con
   // Fastest first: a shutdown cut short (roslaunch escalates to SIGTERM after its SIGINT
   // timeout) still leaves the graph, the journal and the cloud; the OctoMap ray casting comes last.
   graph.save(dir + "/scene_graph.json");
-  writeFileAtomically(dir + "/backend_journal.json", journal().dump());
+  writeFileAtomically(dir + "/backend_journal.json", journalText());
   writePcdAtomically(dir + "/map.pcd", mapCloud(map_config.cloud_voxel_m));
   writeOctomap(dir + "/map.bt", graph, clouds_, map_config);
 }

@@ -72,6 +72,8 @@ class BackendSession {
 
   /// The measurements received so far (keyframes, walls, loops, rooms) as JSON.
   nlohmann::json journal() const;
+  /// The same as JSON text, composed without building the tree (what save() writes).
+  std::string journalText() const;
 
  private:
   void flushPending(uint32_t keyframe_id);
@@ -87,9 +89,11 @@ class BackendSession {
   std::vector<std::pair<LoopEdge, Matrix6d>> pending_loops_;
   std::map<uint32_t, nlohmann::json> journal_rooms_;  // latest version of each room, by id
   uint32_t newest_keyframe_ = 0;
-  nlohmann::json journal_keyframes_ = nlohmann::json::array();
-  nlohmann::json journal_walls_ = nlohmann::json::array();
-  nlohmann::json journal_loops_ = nlohmann::json::array();
+  // Entries kept as compact JSON text: a parsed nlohmann::json tree takes about ten times the
+  // memory, which over hours of keyframes is most of the backend's growth.
+  std::vector<std::string> journal_keyframes_;
+  std::vector<std::string> journal_walls_;
+  std::vector<std::string> journal_loops_;
 };
 
 }  // namespace tacs
