@@ -120,12 +120,11 @@ BackendSession::Outcome BackendSession::addKeyframe(uint32_t id, double stamp,
     clouds_.erase(*released);
   }
   newest_keyframe_ = std::max(newest_keyframe_, id);
-  journal_keyframes_.push_back(nlohmann::json{
-      {"id", id},
-      {"stamp", stamp},
-      {"odom_pose", poseToJson(T_odom_base)},
-      {"information",
-       matrixToJson(information)}}.dump());
+  const nlohmann::json entry = {{"id", id},
+                                {"stamp", stamp},
+                                {"odom_pose", poseToJson(T_odom_base)},
+                                {"information", matrixToJson(information)}};
+  journal_keyframes_.push_back(entry.dump());
   flushPending(id);
   dropStalePending();
   return Outcome::kAdded;
@@ -155,12 +154,12 @@ BackendSession::Outcome BackendSession::addLoop(const LoopEdge& edge, const Matr
     return Outcome::kBuffered;
   }
   backend_.addLoopClosure(edge.from, edge.to, edge.relativePose(), information, edge.score);
-  journal_loops_.push_back(nlohmann::json{
-      {"from", edge.from},
-      {"to", edge.to},
-      {"relative_pose", poseToJson(edge.relativePose())},
-      {"information", matrixToJson(information)},
-      {"score", edge.score}}.dump());
+  const nlohmann::json entry = {{"from", edge.from},
+                                {"to", edge.to},
+                                {"relative_pose", poseToJson(edge.relativePose())},
+                                {"information", matrixToJson(information)},
+                                {"score", edge.score}};
+  journal_loops_.push_back(entry.dump());
   return Outcome::kAdded;
 }
 
