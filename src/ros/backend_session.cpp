@@ -105,7 +105,7 @@ BackendSession::BackendSession(const PipelineConfig& config, const BackendSessio
     : config_(config),
       options_(options),
       backend_(config.backend, config.walls.association),
-      cloud_retention_(config.map_export.cloud_retention) {}
+      clouds_(config.map_export.cloud_retention) {}
 
 BackendSession::Outcome BackendSession::addKeyframe(uint32_t id, double stamp,
                                                     const Pose3& T_odom_base,
@@ -113,12 +113,7 @@ BackendSession::Outcome BackendSession::addKeyframe(uint32_t id, double stamp,
                                                     const PointCloud::ConstPtr& cloud) {
   if (backend_.hasKeyframe(id)) return Outcome::kDuplicate;
   backend_.addKeyframe(id, stamp, T_odom_base, information);
-  if (cloud) clouds_[id] = cloud;
-  if (const auto released = cloud_retention_.add(id, [this](uint32_t k) -> Eigen::Vector3d {
-        return backend_.keyframePose(k).translation();
-      })) {
-    clouds_.erase(*released);
-  }
+  clouds_.add(id, cloud, backend_);
   newest_keyframe_ = std::max(newest_keyframe_, id);
   const nlohmann::json entry = {{"id", id},
                                 {"stamp", stamp},
@@ -215,7 +210,7 @@ std::map<uint32_t, uint32_t> BackendSession::wallObservationCounts() const {
 }
 
 PointCloud BackendSession::mapCloud(double voxel_m) const {
-  PointCloud cloud = buildMapCloud(sceneGraph(), clouds_, voxel_m);
+  PointCloud cloud = buildMapCloud(sceneGraph(), clouds_.clouds(), voxel_m);
   if (recovered_map_) cloud += *recovered_map_;
   return cloud;
 }
@@ -246,7 +241,7 @@ void BackendSession::save(const std::string& dir, const MapExportConfig& map_con
   graph.save(dir + "/scene_graph.json");
   writeFileAtomically(dir + "/backend_journal.json", journalText());
   writePcdAtomically(dir + "/map.pcd", mapCloud(map_config.cloud_voxel_m));
-  writeOctomap(dir + "/map.bt", graph, clouds_, map_config);
+  writeOctomap(dir + "/map.bt", graph, clouds_.clouds(), map_config);
 }
 
 size_t BackendSession::recover(const std::string& dir) {

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "tacs_graphs/backend/backend.h"
 #include "tacs_graphs/backend/map_export.h"
 #include "tacs_graphs/odometry/preprocess.h"
 
@@ -77,6 +78,26 @@ TEST(MapExport, PcdRoundTripAndEmptyMap) {
   ASSERT_EQ(pcl::io::loadPCDFile(path, back), 0);
   EXPECT_TRUE(back.empty());
   std::remove(path.c_str());
+}
+
+// Out along x and back over the same line, a keyframe every 0.5 m: with one cloud per place the
+// way back keeps only the clouds of its youngest keyframes; keyframes without clouds are fine.
+TEST(MapClouds, KeepsTheCloudsOfTheFirstPassOnAReturn) {
+  Backend backend{BackendConfig(), WallAssociationConfig()};
+  KeyframeRetentionConfig retention;
+  retention.place_radius_m = 0.3;
+  retention.max_keyframes_per_place = 1;
+  retention.min_age_keyframes = 3;
+  MapClouds clouds(retention);
+  for (uint32_t id = 0; id < 40; ++id) {
+    const double x = id < 20 ? 0.5 * id : 0.5 * (39 - id);
+    backend.addKeyframe(id, 0.1 * id, poseFromXyzRpy(x, 0, 0, 0, 0, 0),
+                        Backend::Matrix6d::Identity());
+    clouds.add(id, id == 5 ? nullptr : wallPatch(), backend);
+  }
+  // 19 of the first pass (id 5 had none) and the 3 youngest of the way back.
+  EXPECT_EQ(clouds.clouds().size(), 19u + 3u);
+  for (uint32_t id = 0; id < 20; ++id) EXPECT_EQ(clouds.clouds().count(id), id == 5 ? 0u : 1u);
 }
 
 }  // namespace

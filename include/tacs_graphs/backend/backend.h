@@ -58,6 +58,8 @@ class Backend {
 
   /// Optimised pose of a keyframe in the map frame.
   Pose3 keyframePose(uint32_t id) const { return graph_.keyframePose(id); }
+  /// Its position alone (no rotation built: keyframe retention asks for many per keyframe).
+  Eigen::Vector3d keyframePosition(uint32_t id) const { return graph_.keyframePosition(id); }
   /// T_map_odom from the latest keyframe.
   Pose3 mapToOdom() const;
   /// Keyframes, walls, rooms (optimised centres, free space, keyframes; keyframes get the

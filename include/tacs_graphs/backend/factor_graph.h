@@ -99,6 +99,7 @@ class FactorGraph {
   OptimizationReport optimize();
 
   Pose3 keyframePose(uint32_t id) const;
+  Eigen::Vector3d keyframePosition(uint32_t id) const;
   WallPlane wall(uint32_t id) const;
   Eigen::Vector2d roomCenter(uint32_t id) const;
   size_t keyframeCount() const { return keyframes_.size(); }

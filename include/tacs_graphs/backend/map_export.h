@@ -12,10 +12,10 @@
 namespace tacs {
 
 struct MapExportConfig {
-  double cloud_voxel_m = 0.1;            // voxel size of map.pcd and /tacs/map_points [m]
-  double octomap_resolution_m = 0.1;     // leaf size of map.bt [m]
-  double octomap_max_range_m = 15.0;     // rays longer than this only mark free space so far [m]
-  double topdown_resolution_m = 0.05;    // metres per pixel of topdown.png
+  double cloud_voxel_m = 0.1;               // voxel size of map.pcd and /tacs/map_points [m]
+  double octomap_resolution_m = 0.1;        // leaf size of map.bt [m]
+  double octomap_max_range_m = 15.0;        // rays longer than this only mark free space so far [m]
+  double topdown_resolution_m = 0.05;       // metres per pixel of topdown.png
   KeyframeRetentionConfig cloud_retention;  // keyframe clouds kept per place for the map
 
   template <class V>
@@ -31,6 +31,23 @@ struct MapExportConfig {
 
 /// Keyframe clouds (base frame) by keyframe id.
 using KeyframeClouds = std::map<uint32_t, PointCloud::ConstPtr>;
+
+class Backend;
+
+/// The keyframe clouds the map products are built from. On long runs a place keeps the clouds of
+/// about two passes (map_export.cloud_retention); later keyframes there keep only their poses.
+class MapClouds {
+ public:
+  explicit MapClouds(const KeyframeRetentionConfig& retention) : retention_(retention) {}
+  /// Stores a new keyframe's cloud (null: none) and releases a cloud that became redundant,
+  /// judged at the backend's current position estimates.
+  void add(uint32_t id, PointCloud::ConstPtr cloud, const Backend& backend);
+  const KeyframeClouds& clouds() const { return clouds_; }
+
+ private:
+  KeyframeClouds clouds_;
+  KeyframeRetention retention_;
+};
 
 /// All keyframe clouds moved into the map frame with the scene graph's poses, voxel-downsampled.
 PointCloud buildMapCloud(const SceneGraph& graph, const KeyframeClouds& clouds, double voxel_m);

@@ -45,13 +45,11 @@ class KeyframeRetention {
   std::optional<uint32_t> add(uint32_t id, const PositionOf& position_of);
 
   size_t keptCount() const { return young_.size() + kept_old_.size(); }
-  size_t droppedCount() const { return dropped_; }
 
  private:
   KeyframeRetentionConfig config_;
   std::deque<uint32_t> young_;      // kept, not yet min_age_keyframes old
   std::vector<uint32_t> kept_old_;  // kept and old: the places' data
-  size_t dropped_ = 0;
 };
 
 }  // namespace tacs

@@ -66,7 +66,7 @@ class Pipeline {
   Trajectory keyframeTrajectory() const;
   SceneGraph sceneGraph() const { return backend_.sceneGraph(); }
   const Backend& backend() const { return backend_; }
-  const KeyframeClouds& keyframeClouds() const { return keyframe_clouds_; }
+  const KeyframeClouds& keyframeClouds() const { return map_clouds_.clouds(); }
   const StageTimes& stageTimes() const { return stage_times_; }
   /// Total backend optimisation time (t_FGO) and loop-detection time (t_LD) in seconds.
   double fgoSeconds() const { return backend_.totalOptimizationMs() / 1e3; }
@@ -96,8 +96,7 @@ class Pipeline {
   bool loop_since_pose_update_ = false;
   PipelineStats stats_;
   Trajectory odometry_;
-  KeyframeClouds keyframe_clouds_;
-  KeyframeRetention map_cloud_retention_;
+  MapClouds map_clouds_;
   StageTimes stage_times_;
 };
 

@@ -82,15 +82,14 @@ class BackendSession {
   PipelineConfig config_;
   BackendSessionOptions options_;
   Backend backend_;
-  KeyframeClouds clouds_;
-  KeyframeRetention cloud_retention_;
+  MapClouds clouds_;
   PointCloud::Ptr recovered_map_;
   std::map<uint32_t, std::vector<WallSegment>> pending_walls_;
   std::vector<std::pair<LoopEdge, Matrix6d>> pending_loops_;
   std::map<uint32_t, nlohmann::json> journal_rooms_;  // latest version of each room, by id
   uint32_t newest_keyframe_ = 0;
   // Entries kept as compact JSON text: a parsed nlohmann::json tree takes about ten times the
-  // memory, which over hours of keyframes is most of the backend's growth.
+  // memory, and the journal grows with every keyframe.
   std::vector<std::string> journal_keyframes_;
   std::vector<std::string> journal_walls_;
   std::vector<std::string> journal_loops_;

@@ -90,5 +90,3 @@ struct TraversabilityConfig {
 };
 
 }  // namespace tacs
-
-#include "tacs_graphs/common/keyframe_retention.h"

@@ -184,6 +184,11 @@ OptimizationReport FactorGraph::optimize() {
   return report;
 }
 
+Eigen::Vector3d FactorGraph::keyframePosition(uint32_t id) const {
+  const auto& kf = keyframes_.at(id);
+  return Eigen::Vector3d(kf.t[0], kf.t[1], kf.t[2]);
+}
+
 Pose3 FactorGraph::keyframePose(uint32_t id) const {
   const auto& kf = keyframes_.at(id);
   Pose3 pose = Pose3::Identity();

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "tacs_graphs/backend/backend.h"
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/odometry/preprocess.h"
 
@@ -20,6 +21,12 @@ void MapExportConfig::validate() const {
   requireConfig(octomap_max_range_m > 0, "map_export.octomap_max_range_m", "must be > 0");
   requireConfig(topdown_resolution_m > 0, "map_export.topdown_resolution_m", "must be > 0");
   cloud_retention.validate("map_export.cloud_retention.");
+}
+
+void MapClouds::add(uint32_t id, PointCloud::ConstPtr cloud, const Backend& backend) {
+  if (cloud) clouds_[id] = std::move(cloud);
+  const auto position_of = [&backend](uint32_t k) { return backend.keyframePosition(k); };
+  if (const auto released = retention_.add(id, position_of)) clouds_.erase(*released);
 }
 
 PointCloud buildMapCloud(const SceneGraph& graph, const KeyframeClouds& clouds, double voxel_m) {

@@ -22,15 +22,14 @@ std::optional<uint32_t> KeyframeRetention::add(uint32_t id, const PositionOf& po
     kept_old_.push_back(aged);
     return std::nullopt;
   }
-  // Linear in the kept clouds, which the rule itself bounds by the mapped area (a few thousand at
-  // most): microseconds per keyframe.
+  // Linear in the kept keyframes, which the rule itself bounds by the mapped area (a few thousand
+  // at most): microseconds per keyframe.
   const Eigen::Vector3d p = position_of(aged);
   const double radius_sq = config_.place_radius_m * config_.place_radius_m;
   int nearby = 0;
   for (uint32_t other : kept_old_) {
     if ((position_of(other) - p).squaredNorm() <= radius_sq &&
         ++nearby >= config_.max_keyframes_per_place) {
-      ++dropped_;
       return aged;
     }
   }

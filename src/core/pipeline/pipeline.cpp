@@ -20,7 +20,7 @@ Pipeline::Pipeline(const PipelineConfig& config, const Pose3& T_base_sensor)
       room_segmenter_(config_.rooms, config_.walls.axes, T_base_sensor),
       loop_detector_(config_.loop_closure),
       backend_(config_.backend, config_.walls.association),
-      map_cloud_retention_(config_.map_export.cloud_retention) {}
+      map_clouds_(config_.map_export.cloud_retention) {}
 
 ScanOutcome Pipeline::processScan(double stamp, const PointCloud& scan_in_base) {
   ScanOutcome outcome;
@@ -51,14 +51,9 @@ void Pipeline::processKeyframe(const OdometryResult& odom, ScanOutcome* outcome)
   // thousands of keyframes.
   const PointCloud::ConstPtr coarse(
       new PointCloud(voxelDownsample(cloud, config_.odometry.preprocess.voxel_size_m)));
-  keyframe_clouds_[id] = coarse;
   backend_.addKeyframe(id, odom.stamp, odom.T_odom_base, odom.information);
+  map_clouds_.add(id, coarse, backend_);
   const Pose3 T_map_base = backend_.keyframePose(id);
-  if (const auto released = map_cloud_retention_.add(id, [this](uint32_t k) -> Eigen::Vector3d {
-        return backend_.keyframePose(k).translation();
-      })) {
-    keyframe_clouds_.erase(*released);
-  }
 
   // Walls (Sec. III-B-1), associated to the backend's landmarks.
   const WallExtractionResult walls = wall_extractor_.extract(cloud);
