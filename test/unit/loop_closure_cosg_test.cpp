@@ -83,7 +83,8 @@ TEST(LoopClosureCosg, LargeInitialErrorClosesThroughTheFinePathOnly) {
     LoopDetector coarse_detector(coarse_only);
     const Revisit coarse = revisit(&coarse_detector, room, error);
     EXPECT_TRUE(coarse.detection.loops.empty());
-    ASSERT_EQ(coarse.detection.coarse_scores.size(), 5u);
+    // The nearest max_candidates_per_partition (3) of the 5 first-visit keyframes.
+    ASSERT_EQ(coarse.detection.coarse_scores.size(), 3u);
     for (double score : coarse.detection.coarse_scores) {
       EXPECT_LT(score, coarse_only.cosg.s_coarse) << "coarse score";
       EXPECT_GE(score, coarse_only.cosg.s_fine) << "coarse score";
@@ -96,8 +97,8 @@ TEST(LoopClosureCosg, LargeInitialErrorClosesThroughTheFinePathOnly) {
     EXPECT_GE(r.detection.loops.front().score, detector.config().cosg.s_coarse);
     expectCorrect(r.detection.loops.front(), r.truth_query);
     EXPECT_EQ(detector.stats().fine_loops, 1);
-    // 5 coarse registrations, then 3 weak matches refined in 3 stages each.
-    EXPECT_EQ(r.detection.registrations, 5 + 3 * 3);
+    // 3 coarse registrations, then the 3 weak matches refined in 3 stages each.
+    EXPECT_EQ(r.detection.registrations, 3 + 3 * 3);
   }
 }
 
@@ -166,33 +167,101 @@ TEST(LoopClosureCosg, SearchesOnlyTheTwoPartitionsNearestTheQuery) {
   EXPECT_EQ(d.registered.size(), 6u);  // x = 3 .. 8
 }
 
+// A pass along a long room: keyframes 0..8 at x = 1..9 m, then the query (100) at x = 5.2 m.
+// With a detour, the robot leaves the pass after x = 4 m (keyframe 3) and drives `detour` keyframes
+// (ids 10.., not in the room) back and forth across the room before it goes on at x = 5 m.
+struct LongRoomRevisit {
+  LoopDetection detection;
+  Pose3 truth_query = roomPose(5.2, 3.3, -20);
+};
+
+LongRoomRevisit revisitLongRoom(LoopDetector* detector, const test::BoxRoom& room,
+                                uint32_t detour = 0) {
+  LongRoomRevisit out;
+  std::vector<uint32_t> room_ids;
+  for (uint32_t id = 0; id <= 8; ++id) {
+    if (id == 4) {
+      for (uint32_t k = 0; k < detour; ++k) {
+        const Pose3 pose = roomPose(k % 2 == 0 ? 8.5 : 1.5, 5.0, 0);
+        test::addRoomKeyframe(detector, room, 10 + k, pose, pose);
+      }
+    }
+    test::addRoomKeyframe(detector, room, id, roomPose(1.0 + id, 3.5, 0),
+                          roomPose(1.0 + id, 3.5, 0));
+    room_ids.push_back(id);
+  }
+  test::addRoomKeyframe(detector, room, 100, out.truth_query, out.truth_query);
+  out.detection = detector->detectInRoom(100, room_ids);
+  return out;
+}
+
+void expectCorrect(const LoopClosure& loop, const LongRoomRevisit& r) {
+  const Pose3 truth = roomPose(1.0 + loop.from, 3.5, 0).inverse() * r.truth_query;
+  EXPECT_LT(test::translationError(loop.T_from_to, truth), 0.05) << loop.from;
+  EXPECT_LT(test::rotationErrorDeg(loop.T_from_to, truth), 0.5) << loop.from;
+}
+
 TEST(LoopClosureCosg, ALargeRoomGivesTheBestLoopOfEachSearchedPartition) {
-  // Fig. 5(b): with L_part = 3 m the first pass x = 1..9 m makes partitions centred at 2.5, 5.5
-  // and 8 m; a query at x = 5.2 searches the two nearest (5.5 and 2.5) and closes one loop each.
+  // Fig. 5(b): with L_part = 3 m the pass makes partitions centred at 2.5, 5.5 and 8 m; the query
+  // at x = 5.2 searches the two nearest. The robot left the pass after x = 4 m for a detour, so
+  // the partitions' best candidates (x = 5 and x <= 3) lie on stretches of the path far apart:
+  // one loop each.
   const test::BoxRoom room;
   LoopClosureConfig config;
   config.cosg.partition_length_m = 3.0;
   LoopDetector detector(config);
-  std::vector<uint32_t> room_ids;
-  for (uint32_t id = 0; id <= 8; ++id) {
-    test::addRoomKeyframe(&detector, room, id, roomPose(1.0 + id, 3.5, 0),
-                          roomPose(1.0 + id, 3.5, 0));
-    room_ids.push_back(id);
-  }
-  const Pose3 truth_query = roomPose(5.2, 3.3, -20);
-  test::addRoomKeyframe(&detector, room, 100, truth_query, truth_query);
-  const LoopDetection d = detector.detectInRoom(100, room_ids);
+  const LongRoomRevisit r = revisitLongRoom(&detector, room, 4);
+  const LoopDetection& d = r.detection;
   EXPECT_EQ(d.partitions, 3);
   EXPECT_EQ(d.searched_partitions, (std::vector<int>{1, 0}));
   ASSERT_EQ(d.loops.size(), 2u);
-  EXPECT_GE(d.loops[0].from, 3u);  // x = 4..6
-  EXPECT_LE(d.loops[0].from, 5u);
-  EXPECT_LE(d.loops[1].from, 2u);  // x = 1..3
-  for (const LoopClosure& loop : d.loops) {
-    const Pose3 truth = roomPose(1.0 + loop.from, 3.5, 0).inverse() * truth_query;
-    EXPECT_LT(test::translationError(loop.T_from_to, truth), 0.05) << loop.from;
-    EXPECT_LT(test::rotationErrorDeg(loop.T_from_to, truth), 0.5) << loop.from;
-  }
+  EXPECT_GE(d.loops[0].score, d.loops[1].score);  // best first
+  std::vector<uint32_t> from = {d.loops[0].from, d.loops[1].from};
+  std::sort(from.begin(), from.end());
+  EXPECT_LE(from[0], 2u);  // x = 1..3
+  EXPECT_GE(from[1], 4u);  // x = 5..6, after the detour
+  EXPECT_LE(from[1], 5u);
+  for (const LoopClosure& loop : d.loops) expectCorrect(loop, r);
+}
+
+TEST(LoopClosureCosg, PartitionsOnOneStretchOfThePathGiveOneLoop) {
+  // The same room passed in one go: the second partition's best candidate lies within L_part of
+  // the first's along the path, its loop would repeat the first.
+  const test::BoxRoom room;
+  LoopClosureConfig config;
+  config.cosg.partition_length_m = 3.0;
+  LoopDetector detector(config);
+  const LongRoomRevisit r = revisitLongRoom(&detector, room);
+  const LoopDetection& d = r.detection;
+  EXPECT_EQ(d.searched_partitions, (std::vector<int>{1, 0}));
+  ASSERT_EQ(d.loops.size(), 1u);
+  const double best_score = *std::max_element(d.coarse_scores.begin(), d.coarse_scores.end());
+  EXPECT_DOUBLE_EQ(d.loops[0].score, best_score);
+  expectCorrect(d.loops[0], r);
+}
+
+TEST(LoopClosureCosg, NoSearchWithinTheMinimumIntervalAfterALoop) {
+  const test::BoxRoom room;
+  LoopClosureConfig config;
+  config.cosg.min_loop_interval_m = 3.0;
+  LoopDetector detector(config);
+  const Revisit r = revisit(&detector, room, Pose3::Identity());
+  ASSERT_EQ(r.detection.loops.size(), 1u);
+  std::vector<uint32_t> room_ids = {0, 1, 2, 3, 4, 50};
+  // 1.5 m of travel after the loop: the room's re-detection does not search.
+  const Pose3 near = roomPose(5.8, 2.9, 35);
+  test::addRoomKeyframe(&detector, room, 51, near, near);
+  room_ids.push_back(51);
+  const LoopDetection skipped = detector.detectInRoom(51, room_ids);
+  EXPECT_NE(skipped.skipped.find("min_loop_interval_m"), std::string::npos) << skipped.skipped;
+  EXPECT_EQ(skipped.registrations, 0);
+  // 3.5 m: it searches (and closes) again.
+  const Pose3 far = roomPose(3.8, 2.9, 35);
+  test::addRoomKeyframe(&detector, room, 52, far, far);
+  room_ids.push_back(52);
+  const LoopDetection searched = detector.detectInRoom(52, room_ids);
+  EXPECT_TRUE(searched.skipped.empty()) << searched.skipped;
+  EXPECT_EQ(searched.loops.size(), 1u);
 }
 
 TEST(LoopClosureCosg, CandidatesFollowUpdatedPoseEstimates) {

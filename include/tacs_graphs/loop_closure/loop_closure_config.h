@@ -44,7 +44,7 @@ struct LoopRegistrationConfig {
 struct CosgLoopConfig {
   double d_loop_m = 5.0;            // [m] d_th^loop: candidates this close to the query (estimates)
   double partition_length_m = 8.0;  // [m] L_part along the room's long axis
-  int max_candidates_per_partition = 6;   // nearest candidates registered per searched partition
+  int max_candidates_per_partition = 3;   // nearest candidates registered per searched partition
   int min_id_separation = 20;             // [keyframes] younger candidates are the same visit
   double min_time_separation_s = 20.0;    // [s] ... and so are candidates this recent
   double coarse_correspondence_m = 0.25;  // [m] GICP pair gating of the coarse (direct) path
@@ -54,6 +54,10 @@ struct CosgLoopConfig {
   double s_coarse = 0.85;       // S_coarse: a registration with this score is a loop [-]
   double s_fine = 0.4;          // S_fine: weaker matches with at least this score are refined [-]
   int max_fine_candidates = 3;  // best weak matches refined coarse-to-fine per detection
+  // [m] travel since the last accepted loop before a re-detection searches again: a room entered
+  // right after a loop lies on a path that loop has just corrected (same rule as the baseline's
+  // min_edge_interval_m). 0 searches on every re-detection.
+  double min_loop_interval_m = 5.0;
 
   template <class V>
   void visit(V& v) {
@@ -67,6 +71,7 @@ struct CosgLoopConfig {
     v("s_coarse", s_coarse);
     v("s_fine", s_fine);
     v("max_fine_candidates", max_fine_candidates);
+    v("min_loop_interval_m", min_loop_interval_m);
   }
   void validate() const;
 };

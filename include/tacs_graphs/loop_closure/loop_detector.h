@@ -3,11 +3,16 @@
 // CoSG-LCD (paper Sec. III-D): run when a room observation is associated with a room already in
 // the graph. Candidates are that room's keyframes within d_loop of the query, restricted to the
 // two partitions of a large room nearest the query. Each is registered with GICP from the
-// current pose estimates; the best by match score is a loop when it reaches S_coarse. When none
-// does (large initial pose error), the weaker matches reaching the relaxed S_fine are refined
-// coarse-to-fine, with correspondence gates shrinking from wide to narrow, and the refined best
-// is a loop when it reaches S_coarse. The match score S is the share of the query's wall-like
-// points, within the overlap with the candidate, that lie on the candidate's surfaces.
+// current pose estimates; the best pair of each searched partition is a loop when it reaches
+// S_coarse (Fig. 5(b)), unless its candidate lies within L_part along the path of a better loop's
+// candidate (the same stretch of the earlier visit, which the odometry already holds together:
+// the second loop would only repeat the first). When no pair reaches S_coarse (large initial pose
+// error), the weaker matches reaching the relaxed S_fine are refined coarse-to-fine, with
+// correspondence gates shrinking from wide to narrow, and the refined best is a loop when it
+// reaches S_coarse. The match score S is the share of the query's wall-like points, within the
+// overlap with the candidate, that lie on the candidate's surfaces. A re-detection within
+// cosg.min_loop_interval_m of travel after the last loop does not search: the path since was just
+// corrected, a further loop would be redundant (Sec. III-D).
 //
 // A loop's information is the GICP Hessian at the result (the unit-less plane covariances of
 // gicp.h, as for the odometry's keyframe information) times registration.information_scale.
@@ -129,7 +134,7 @@ class LoopDetector {
   KeyframeRetention retention_;
   uint32_t last_added_ = 0;
   bool any_added_ = false;
-  double last_distance_loop_accum_ = -1.0;  // accum distance of the last baseline loop; < 0: none
+  double last_loop_accum_ = -1.0;  // accum distance of the last accepted loop's query; < 0: none
   LoopDetectorStats stats_;
 };
 

@@ -37,6 +37,7 @@ void CosgLoopConfig::validate() const {
   requireConfig(s_fine > 0.0 && s_fine <= s_coarse, p + "s_fine",
                 "must be in (0, s_coarse] (the relaxed threshold)");
   requireConfig(max_fine_candidates >= 0, p + "max_fine_candidates", "must be >= 0 (0 = off)");
+  requireConfig(min_loop_interval_m >= 0.0, p + "min_loop_interval_m", "must be >= 0 (0 = off)");
 }
 
 void DistanceLoopConfig::validate() const {

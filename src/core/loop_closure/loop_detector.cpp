@@ -202,6 +202,9 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
   LoopDetection det;
   const Keyframe& query = query_it->second;
   const CosgLoopConfig& cc = config_.cosg;
+  if (last_loop_accum_ >= 0.0 && query.accum_distance - last_loop_accum_ < cc.min_loop_interval_m) {
+    return skipped("within min_loop_interval_m of the last loop", watch);
+  }
   // The room's other keyframes: their estimates define the room's extent and partitions.
   std::vector<uint32_t> room;
   std::vector<Eigen::Vector2d> positions;
@@ -240,14 +243,24 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
       ++det.registrations;
     }
   }
-  // Fig. 5(b): the best pair of each searched partition is a loop when it reaches S_coarse.
+  // Fig. 5(b): the best pair of each searched partition is a loop when it reaches S_coarse, best
+  // first; one whose candidate lies within L_part along the path of an accepted loop's candidate
+  // ties the query to the same stretch of the earlier visit again and is left out.
+  std::vector<const Registration*> best;
   for (const auto& regs : coarse) {
-    auto best = std::max_element(regs.begin(), regs.end(),
-                                 [](const auto& a, const auto& b) { return a.score < b.score; });
-    if (best != regs.end() && best->score >= cc.s_coarse) {
-      det.loops.push_back(makeLoop(*best, query_id, LoopPath::kCoarse));
-    }
+    auto it = std::max_element(regs.begin(), regs.end(),
+                               [](const auto& a, const auto& b) { return a.score < b.score; });
+    if (it != regs.end() && it->score >= cc.s_coarse) best.push_back(&*it);
   }
+  std::sort(best.begin(), best.end(), [](auto a, auto b) { return a->score > b->score; });
+  for (const Registration* r : best) {
+    const double along = keyframes_.at(r->candidate).accum_distance;
+    const bool repeats = std::any_of(det.loops.begin(), det.loops.end(), [&](const auto& loop) {
+      return std::abs(keyframes_.at(loop.from).accum_distance - along) < cc.partition_length_m;
+    });
+    if (!repeats) det.loops.push_back(makeLoop(*r, query_id, LoopPath::kCoarse));
+  }
+  if (!det.loops.empty()) last_loop_accum_ = query.accum_distance;
   if (!det.loops.empty() || cc.max_fine_candidates == 0) {
     finish(&det, watch.elapsedMs());
     return det;
@@ -283,6 +296,7 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
   }
   if (best_fine && best_fine->score >= cc.s_coarse) {
     det.loops.push_back(makeLoop(*best_fine, query_id, LoopPath::kFine));
+    last_loop_accum_ = query.accum_distance;
   }
   finish(&det, watch.elapsedMs());
   return det;
