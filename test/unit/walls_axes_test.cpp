@@ -17,7 +17,7 @@ Eigen::Vector3d horizontalNormal(double angle) { return {std::cos(angle), std::s
 TEST(DominantAxes, RecoveredAtThirtyDegreesFromExtractedWalls) {
   test::SyntheticScene scene;
   scene.boxRoom(-3.0, 5.0, -2.0, 4.0, -0.8, 1.8);
-  scene.wall({-2.0, 1.0}, {-1.0, 2.0}, -0.8, 1.0);  // a short diagonal cabinet face
+  scene.wall({-2.0, 1.0}, {-1.0, 2.0}, -0.8, 1.8);  // a short diagonal full-height partition
   scene.transform(poseFromXyzRpy(0, 0, 0, 0, 0, 30 * kDeg));
   const auto walls = WallExtractor(WallExtractionConfig{}).extract(scene.cloud).walls;
   ASSERT_GE(walls.size(), 4u);

@@ -139,6 +139,34 @@ TEST(WallExtraction, FloorAndCeilingLinesDoNotBridgeADoorway) {
   EXPECT_NEAR(joined[0].length(), 13.0, 0.3);
 }
 
+// Keeps the points seen below `max_elevation_deg` from the origin, as a LiDAR's upper beam does.
+void cropAboveElevation(PointCloud* cloud, double max_elevation_deg) {
+  PointCloud kept;
+  for (const auto& p : cloud->points) {
+    if (std::atan2(p.z, std::hypot(p.x, p.y)) <= max_elevation_deg * kDeg) kept.push_back(p);
+  }
+  *cloud = kept;
+}
+
+TEST(WallExtraction, LowSurfacesTheBeamsPassedOverAreNoWalls) {
+  // A cabinet face 2 m in front of the sensor, 0.8 m tall (its top level with the sensor): the
+  // beams above it reach the room's walls, so it is furniture.
+  auto scene = boxRoomScene();
+  scene.wall({2, -1}, {2, 1.5}, -0.8, 0.0);
+  cropAboveElevation(&scene.cloud, 15.0);  // a VLP-16's upper beam
+  WallExtractionConfig cfg;
+  const auto result = WallExtractor(cfg).extract(scene.cloud);
+  EXPECT_TRUE(matching(result.walls, {-1, 0, 0}, 2.0).empty());
+  // The room's walls stay although their tops are cut by the field of view (at 3 m the upper
+  // beam meets the wall 0.8 m above the sensor, below min_wall_top).
+  EXPECT_EQ(matching(result.walls, {1, 0, 0}, 3.0).size(), 1u);
+  EXPECT_EQ(matching(result.walls, {0, 1, 0}, 2.0).size(), 1u);
+  EXPECT_EQ(matching(result.walls, {0, -1, 0}, 4.0).size(), 1u);
+  // Without the test the cabinet is a wall.
+  cfg.min_wall_top = 0.0;
+  EXPECT_EQ(matching(WallExtractor(cfg).extract(scene.cloud).walls, {-1, 0, 0}, 2.0).size(), 1u);
+}
+
 TEST(WallExtraction, RotatedRoomGivesRotatedNormals) {
   auto scene = boxRoomScene();
   const double yaw = 30 * kDeg;

@@ -58,6 +58,12 @@ struct WallExtractionConfig {
   double min_wall_height = 0.3;
   /// ...and inliers along at least this share of its length (bins of max(0.1, 2 voxel_size) m).
   double min_coverage = 0.6;
+  /// A wall reaches this high above the sensor (m). A segment whose top stays lower while the
+  /// sensor's upper beams pass above it at that range is a low surface (furniture side, half wall,
+  /// parapet), not a wall; a top cut by the field of view (near walls) is no evidence. 0 = off.
+  double min_wall_top = 1.0;
+  /// A top within this elevation of the scan's highest beam is cut by the field of view (deg).
+  double fov_top_margin_deg = 3.0;
   /// Horizontal planes with fewer inliers are not reported (their points are still removed).
   int min_horizontal_inliers = 200;
   /// Seed of the random sampling.
@@ -84,6 +90,8 @@ struct WallExtractionConfig {
     v("min_wall_length", min_wall_length);
     v("min_wall_height", min_wall_height);
     v("min_coverage", min_coverage);
+    v("min_wall_top", min_wall_top);
+    v("fov_top_margin_deg", fov_top_margin_deg);
     v("min_horizontal_inliers", min_horizontal_inliers);
     v("seed", seed);
   }

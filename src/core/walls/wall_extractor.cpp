@@ -37,6 +37,9 @@ void WallExtractionConfig::validate() const {
   requireConfig(min_wall_height >= 0.0, p + "min_wall_height", "must be >= 0");
   requireConfig(min_coverage >= 0.0 && min_coverage <= 1.0, p + "min_coverage",
                 "must be in [0, 1]");
+  requireConfig(min_wall_top >= 0.0, p + "min_wall_top", "must be >= 0 (0 = off)");
+  requireConfig(fov_top_margin_deg >= 0.0 && fov_top_margin_deg < 90.0, p + "fov_top_margin_deg",
+                "must be in [0, 90)");
   requireConfig(min_horizontal_inliers >= 3, p + "min_horizontal_inliers", "must be >= 3");
 }
 
@@ -185,6 +188,39 @@ void collectInliers(const Points& pts, const std::vector<uint32_t>& candidates, 
   }
 }
 
+// Where the scan was taken from and how high its beams reach.
+struct View {
+  Eigen::Vector3d viewpoint = Eigen::Vector3d::Zero();
+  double top_elevation = M_PI_2;  // [rad] elevation of the highest beam seen from the viewpoint
+};
+
+// Beams nearer than this (horizontally) say little about the field of view: the elevation of a
+// point on the robot's own mast or a close ceiling lamp is not the sensor's.
+constexpr double kMinElevationRange = 1.0;  // [m]
+
+View viewOf(const Points& pts, const Eigen::Vector3d& viewpoint) {
+  View view;
+  view.viewpoint = viewpoint;
+  // The steepest slope dz / r, one atan at the end: atan is monotonic.
+  double top_slope = -std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3f& p : pts) {
+    const Eigen::Vector3d q = p.cast<double>() - viewpoint;
+    const double r = q.head<2>().norm();
+    if (r >= kMinElevationRange) top_slope = std::max(top_slope, q.z() / r);
+  }
+  if (std::isfinite(top_slope)) view.top_elevation = std::atan(top_slope);
+  return view;
+}
+
+// A low surface: its top (z_top, seen at horizontal range r_top) stays below min_wall_top above
+// the sensor although the scan's upper beams pass above it there, so the sensor saw over it.
+bool isLowSurface(double z_top, double r_top, const View& view, const WallExtractionConfig& cfg) {
+  const double above_sensor = z_top - view.viewpoint.z();
+  if (cfg.min_wall_top <= 0.0 || above_sensor >= cfg.min_wall_top) return false;
+  const double elevation = std::atan2(above_sensor, r_top);
+  return elevation < view.top_elevation - cfg.fov_top_margin_deg * M_PI / 180.0;
+}
+
 void faceViewpoint(const Eigen::Vector3d& viewpoint, bool horizontal_only_z, Plane* pl) {
   Eigen::Vector3d v = viewpoint;
   if (!horizontal_only_z) v.z() = 0.0;  // walls: only the xy position of the sensor matters
@@ -196,26 +232,31 @@ void faceViewpoint(const Eigen::Vector3d& viewpoint, bool horizontal_only_z, Pla
 
 // One bounded segment from a run of inliers of a vertical plane, or false when too small.
 bool makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
-                     const WallExtractionConfig& cfg, const Eigen::Vector3d& viewpoint,
-                     WallSegment* wall) {
+                     const WallExtractionConfig& cfg, const View& view, WallSegment* wall) {
   if (run.size() < static_cast<size_t>(cfg.min_wall_inliers)) return false;
   Eigen::Vector3d c;
   Plane pl = fitPlane(pts, run, &c);
   // The run's own plane must be vertical too (a model can pass the test thanks to other runs).
   if (std::abs(pl.n.z()) > std::sin(cfg.vertical_tolerance_deg * M_PI / 180.0)) return false;
-  faceViewpoint(viewpoint, false, &pl);
+  faceViewpoint(view.viewpoint, false, &pl);
   const Eigen::Vector2d axis = wallAxis(pl.n);
   double t_min = std::numeric_limits<double>::infinity(), t_max = -t_min;
   double z_min = t_min, z_max = -t_min;
+  uint32_t top = run.front();
   for (uint32_t i : run) {
     const Eigen::Vector3d p = pts[i].cast<double>();
     const double t = axis.dot(p.head<2>() - c.head<2>());
     t_min = std::min(t_min, t);
     t_max = std::max(t_max, t);
     z_min = std::min(z_min, p.z());
-    z_max = std::max(z_max, p.z());
+    if (p.z() > z_max) {
+      z_max = p.z();
+      top = i;
+    }
   }
   if (t_max - t_min < cfg.min_wall_length || z_max - z_min < cfg.min_wall_height) return false;
+  const double r_top = (pts[top].head<2>().cast<double>() - view.viewpoint.head<2>()).norm();
+  if (isLowSurface(z_max, r_top, view, cfg)) return false;
   // Share of the length with inliers: a plane threading through scattered clutter covers little.
   const double bin = std::max(0.1, 2.0 * cfg.voxel_size);
   std::vector<uint8_t> occupied(static_cast<size_t>((t_max - t_min) / bin) + 1, 0);
@@ -228,12 +269,13 @@ bool makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
   if (static_cast<double>(filled) < cfg.min_coverage * static_cast<double>(occupied.size())) {
     return false;
   }
+  const Eigen::Vector2d a = c.head<2>() + t_min * axis, b = c.head<2>() + t_max * axis;
   const double z_mid = 0.5 * (z_min + z_max);
   wall->normal = pl.n;
   wall->d = pl.d;
   wall->inliers = static_cast<uint32_t>(run.size());
-  wall->endpoints[0] = projectOntoWallLine(pl.n, pl.d, c.head<2>() + t_min * axis, z_mid);
-  wall->endpoints[1] = projectOntoWallLine(pl.n, pl.d, c.head<2>() + t_max * axis, z_mid);
+  wall->endpoints[0] = projectOntoWallLine(pl.n, pl.d, a, z_mid);
+  wall->endpoints[1] = projectOntoWallLine(pl.n, pl.d, b, z_mid);
   wall->z_min = z_min;
   wall->z_max = z_max;
   return true;
@@ -244,7 +286,7 @@ bool makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
 // plane's floor and ceiling lines (edge_band); those lines cross doorways, so their inliers only
 // join a run they lie within.
 void splitIntoWalls(const Points& pts, const std::vector<uint32_t>& inliers, const Plane& pl,
-                    const WallExtractionConfig& cfg, const Eigen::Vector3d& viewpoint,
+                    const WallExtractionConfig& cfg, const View& view,
                     std::vector<WallSegment>* walls) {
   float z_lo = std::numeric_limits<float>::infinity(), z_hi = -z_lo;
   for (uint32_t i : inliers) {
@@ -275,7 +317,7 @@ void splitIntoWalls(const Points& pts, const std::vector<uint32_t>& inliers, con
       if (edge[e].first >= t0) run.push_back(edge[e].second);
     }
     WallSegment wall;
-    if (makeWallSegment(pts, run, cfg, viewpoint, &wall)) walls->push_back(wall);
+    if (makeWallSegment(pts, run, cfg, view, &wall)) walls->push_back(wall);
     run.clear();
   }
 }
@@ -437,6 +479,7 @@ WallExtractionResult WallExtractor::extract(const PointCloud& cloud_in_base,
   const Points& pts = scratch.pts;
   result.downsampled_points = pts.size();
 
+  const View view = viewOf(pts, viewpoint);
   const double sin_vertical = std::sin(config_.vertical_tolerance_deg * M_PI / 180.0);
   const double cos_horizontal = std::cos(config_.horizontal_tolerance_deg * M_PI / 180.0);
   PlaneSearch search(config_, &scratch);
@@ -449,7 +492,7 @@ WallExtractionResult WallExtractor::extract(const PointCloud& cloud_in_base,
     ++result.planes_found;
     const double nz = std::abs(plane.n.z());
     if (nz <= sin_vertical) {
-      splitIntoWalls(pts, inliers, plane, config_, viewpoint, &result.walls);
+      splitIntoWalls(pts, inliers, plane, config_, view, &result.walls);
     } else if (nz >= cos_horizontal &&
                inliers.size() >= static_cast<size_t>(config_.min_horizontal_inliers)) {
       result.horizontal.push_back(makeHorizontal(pts, inliers, plane, viewpoint));
