@@ -22,7 +22,9 @@ void WallExtractionNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr&
     warnings_.warn("keyframe", WarnOnce::reasonKey(kf.error), kf.error + ", skipped");
     return;
   }
-  const WallExtractionResult result = extractor_.extract(*kf.cloud);
+  // Seen from the sensor: the low-surface test measures heights and elevations from there.
+  const WallExtractionResult result =
+      extractor_.extract(*kf.cloud, config_.frames.baseToSensor().translation());
   ++processed_;
   tacs_graphs::WallObservations out;
   out.header.stamp = msg->header.stamp;

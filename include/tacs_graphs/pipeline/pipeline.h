@@ -47,8 +47,8 @@ struct PipelineStats {
 
 class Pipeline {
  public:
-  /// Validates the configuration (throws ConfigError). T_base_sensor is the ray origin of the
-  /// voxel room baseline.
+  /// Validates the configuration (throws ConfigError). T_base_sensor is the viewpoint of wall
+  /// extraction and the ray origin of the voxel room baseline.
   explicit Pipeline(const PipelineConfig& config, const Pose3& T_base_sensor = Pose3::Identity());
 
   /// Processes one scan given in the base frame (the caller applies the sensor extrinsic). Never
@@ -86,6 +86,7 @@ class Pipeline {
   PipelineConfig config_;
   LidarOdometry odometry_estimator_;
   WallExtractor wall_extractor_;
+  Eigen::Vector3d sensor_in_base_;  // wall extraction's viewpoint
   TraversabilityMapper traversability_mapper_;
   TraversableMap traversable_map_;
   RoomSegmenter room_segmenter_;

@@ -15,6 +15,7 @@ Pipeline::Pipeline(const PipelineConfig& config, const Pose3& T_base_sensor)
     : config_(validated(config)),
       odometry_estimator_(config_.odometry),
       wall_extractor_(config_.walls.extraction),
+      sensor_in_base_(T_base_sensor.translation()),
       traversability_mapper_(config_.traversability),
       traversable_map_(config_.traversability),
       room_segmenter_(config_.rooms, config_.walls.axes, T_base_sensor),
@@ -56,7 +57,7 @@ void Pipeline::processKeyframe(const OdometryResult& odom, ScanOutcome* outcome)
   const Pose3 T_map_base = backend_.keyframePose(id);
 
   // Walls (Sec. III-B-1), associated to the backend's landmarks.
-  const WallExtractionResult walls = wall_extractor_.extract(cloud);
+  const WallExtractionResult walls = wall_extractor_.extract(cloud, sensor_in_base_);
   stage_times_.add("walls", walls.time_ms);
   backend_.addWallObservations(id, walls.walls);
   outcome->walls = walls.walls.size();
