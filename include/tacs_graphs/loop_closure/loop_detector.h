@@ -126,6 +126,9 @@ class LoopDetector {
   LoopClosure makeLoop(const Registration& r, uint32_t query, LoopPath path) const;
   bool isRecent(const Keyframe& candidate, uint32_t candidate_id, const Keyframe& query,
                 uint32_t query_id) const;
+  /// Less than `interval_m` of travel since the last accepted loop's query.
+  bool soonAfterLastLoop(const Keyframe& query, double interval_m) const;
+  /// Books a detection into the totals and remembers where its loops were closed.
   void finish(LoopDetection* detection, double elapsed_ms);
   LoopDetection skipped(const std::string& why, const Stopwatch& watch);
 

@@ -174,8 +174,16 @@ bool LoopDetector::isRecent(const Keyframe& candidate, uint32_t candidate_id, co
          std::abs(query.stamp - candidate.stamp) < config_.cosg.min_time_separation_s;
 }
 
+bool LoopDetector::soonAfterLastLoop(const Keyframe& query, double interval_m) const {
+  return last_loop_accum_ >= 0.0 && query.accum_distance - last_loop_accum_ < interval_m;
+}
+
 void LoopDetector::finish(LoopDetection* detection, double elapsed_ms) {
   detection->time_ms = elapsed_ms;
+  // Every loop of a detection has the same query.
+  if (!detection->loops.empty()) {
+    last_loop_accum_ = keyframes_.at(detection->loops.front().to).accum_distance;
+  }
   ++stats_.detections;
   stats_.registrations += detection->registrations;
   stats_.total_ms += elapsed_ms;
@@ -202,7 +210,7 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
   LoopDetection det;
   const Keyframe& query = query_it->second;
   const CosgLoopConfig& cc = config_.cosg;
-  if (last_loop_accum_ >= 0.0 && query.accum_distance - last_loop_accum_ < cc.min_loop_interval_m) {
+  if (soonAfterLastLoop(query, cc.min_loop_interval_m)) {
     return skipped("within min_loop_interval_m of the last loop", watch);
   }
   // The room's other keyframes: their estimates define the room's extent and partitions.
@@ -260,7 +268,6 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
     });
     if (!repeats) det.loops.push_back(makeLoop(*r, query_id, LoopPath::kCoarse));
   }
-  if (!det.loops.empty()) last_loop_accum_ = query.accum_distance;
   if (!det.loops.empty() || cc.max_fine_candidates == 0) {
     finish(&det, watch.elapsedMs());
     return det;
@@ -296,7 +303,6 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
   }
   if (best_fine && best_fine->score >= cc.s_coarse) {
     det.loops.push_back(makeLoop(*best_fine, query_id, LoopPath::kFine));
-    last_loop_accum_ = query.accum_distance;
   }
   finish(&det, watch.elapsedMs());
   return det;

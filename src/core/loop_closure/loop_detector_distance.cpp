@@ -17,7 +17,7 @@ LoopDetection LoopDetector::detectByDistance(uint32_t query_id) {
   const Keyframe& query = query_it->second;
   const DistanceLoopConfig& dc = config_.distance;
   // Loops are spaced along the path: right after one, the next keyframes would only repeat it.
-  if (last_loop_accum_ >= 0.0 && query.accum_distance - last_loop_accum_ < dc.min_edge_interval_m) {
+  if (soonAfterLastLoop(query, dc.min_edge_interval_m)) {
     return skipped("within min_edge_interval_m of the last loop", watch);
   }
   const Eigen::Vector2d q_xy = query.T_map_base.translation().head<2>();
@@ -39,7 +39,6 @@ LoopDetection LoopDetector::detectByDistance(uint32_t query_id) {
   }
   if (best && best->gicp.fitness < dc.fitness_threshold) {
     det.loops.push_back(makeLoop(*best, query_id, LoopPath::kDistance));
-    last_loop_accum_ = query.accum_distance;
   }
   finish(&det, watch.elapsedMs());
   return det;
