@@ -16,7 +16,8 @@ struct RunInfo {
 };
 
 /// timing.json: scans, keyframes, wall time, scans per second, per-stage milliseconds
-/// (total, mean, max, calls), t_fgo_s and t_ld_s.
+/// (total, mean, max, calls), t_fgo_s, t_ld_s and loop_detection (detections, GICP
+/// registrations, loops by path).
 nlohmann::json timingJson(const Pipeline& pipeline, const RunInfo& info);
 
 /// Writes the whole run folder (created if needed). Throws std::runtime_error naming the file.

@@ -228,7 +228,17 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
   det.partitions = static_cast<int>(parts.centers.size());
   det.searched_partitions = parts.selected;
 
-  // Coarse path: register the nearest candidates of each searched partition from the estimates.
+  // Coarse path (Fig. 5(b)), partitions nearest first: register the nearest candidates of each
+  // from the estimates; a partition's best pair is a loop when it reaches S_coarse, unless its
+  // candidate lies within L_part along the path of an accepted loop's candidate: that would tie
+  // the query to the same stretch of the earlier visit again. A partition whose candidates all
+  // lie there is not registered at all (one room passed in one go gives one loop, not two).
+  const auto repeats_loop = [&](uint32_t candidate) {
+    const double along = keyframes_.at(candidate).accum_distance;
+    return std::any_of(det.loops.begin(), det.loops.end(), [&](const LoopClosure& loop) {
+      return std::abs(keyframes_.at(loop.from).accum_distance - along) < cc.partition_length_m;
+    });
+  };
   std::vector<std::vector<Registration>> coarse(parts.selected.size());
   for (size_t s = 0; s < parts.selected.size(); ++s) {
     std::vector<std::pair<double, uint32_t>> near;  // (distance, id)
@@ -240,34 +250,27 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
       if (d <= cc.d_loop_m) near.emplace_back(d, room[i]);
     }
     std::sort(near.begin(), near.end());
-    for (size_t k = 0; k < near.size(); ++k) {
-      const uint32_t id = near[k].second;
-      det.candidates.push_back(id);
-      if (k >= static_cast<size_t>(cc.max_candidates_per_partition)) continue;
+    for (const auto& [d, id] : near) det.candidates.push_back(id);
+    near.resize(std::min(near.size(), static_cast<size_t>(cc.max_candidates_per_partition)));
+    if (std::all_of(near.begin(), near.end(),
+                    [&](const auto& n) { return repeats_loop(n.second); })) {
+      continue;
+    }
+    for (const auto& [d, id] : near) {
       const Pose3 guess = keyframes_.at(id).T_map_base.inverse() * query.T_map_base;
       coarse[s].push_back(registerPair(id, query_id, guess, cc.coarse_correspondence_m));
       det.registered.push_back(id);
       det.coarse_scores.push_back(coarse[s].back().score);
       ++det.registrations;
     }
+    auto best = std::max_element(coarse[s].begin(), coarse[s].end(),
+                                 [](const auto& a, const auto& b) { return a.score < b.score; });
+    if (best != coarse[s].end() && best->score >= cc.s_coarse && !repeats_loop(best->candidate)) {
+      det.loops.push_back(makeLoop(*best, query_id, LoopPath::kCoarse));
+    }
   }
-  // Fig. 5(b): the best pair of each searched partition is a loop when it reaches S_coarse, best
-  // first; one whose candidate lies within L_part along the path of an accepted loop's candidate
-  // ties the query to the same stretch of the earlier visit again and is left out.
-  std::vector<const Registration*> best;
-  for (const auto& regs : coarse) {
-    auto it = std::max_element(regs.begin(), regs.end(),
-                               [](const auto& a, const auto& b) { return a.score < b.score; });
-    if (it != regs.end() && it->score >= cc.s_coarse) best.push_back(&*it);
-  }
-  std::sort(best.begin(), best.end(), [](auto a, auto b) { return a->score > b->score; });
-  for (const Registration* r : best) {
-    const double along = keyframes_.at(r->candidate).accum_distance;
-    const bool repeats = std::any_of(det.loops.begin(), det.loops.end(), [&](const auto& loop) {
-      return std::abs(keyframes_.at(loop.from).accum_distance - along) < cc.partition_length_m;
-    });
-    if (!repeats) det.loops.push_back(makeLoop(*r, query_id, LoopPath::kCoarse));
-  }
+  std::sort(det.loops.begin(), det.loops.end(),
+            [](const LoopClosure& a, const LoopClosure& b) { return a.score > b.score; });
   if (!det.loops.empty() || cc.max_fine_candidates == 0) {
     finish(&det, watch.elapsedMs());
     return det;

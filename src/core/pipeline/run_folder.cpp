@@ -29,6 +29,12 @@ nlohmann::json timingJson(const Pipeline& pipeline, const RunInfo& info) {
   j["stages_ms"] = stages;
   j["t_fgo_s"] = pipeline.fgoSeconds();
   j["t_ld_s"] = pipeline.ldSeconds();
+  const LoopDetectorStats& lcd = pipeline.loopDetector().stats();
+  j["loop_detection"] = {{"detections", lcd.detections},
+                         {"registrations", lcd.registrations},
+                         {"coarse_loops", lcd.coarse_loops},
+                         {"fine_loops", lcd.fine_loops},
+                         {"distance_loops", lcd.distance_loops}};
   j["optimizations"] = pipeline.backend().optimizations();
   return j;
 }
