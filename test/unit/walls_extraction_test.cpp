@@ -162,9 +162,43 @@ TEST(WallExtraction, LowSurfacesTheBeamsPassedOverAreNoWalls) {
   EXPECT_EQ(matching(result.walls, {1, 0, 0}, 3.0).size(), 1u);
   EXPECT_EQ(matching(result.walls, {0, 1, 0}, 2.0).size(), 1u);
   EXPECT_EQ(matching(result.walls, {0, -1, 0}, 4.0).size(), 1u);
-  // Without the test the cabinet is a wall.
+  // Without the test (and the seen-over test, which the rays over the cabinet also pass) the
+  // cabinet is a wall.
   cfg.min_wall_top = 0.0;
+  cfg.seen_over_min_points = 0;
   EXPECT_EQ(matching(WallExtractor(cfg).extract(scene.cloud).walls, {-1, 0, 0}, 2.0).size(), 1u);
+}
+
+TEST(WallExtraction, ACabinetInFrontOfAWallIsSeenOver) {
+  // A cabinet face at x = 4.5 that stands on the floor and reaches 1.2 m above the sensor (above
+  // min_wall_top), 0.5 m in front of the room's wall x = 5: rays over it reach the wall behind.
+  auto scene = boxRoomScene();
+  scene.wall({4.5, -1.5}, {4.5, 1.0}, -0.8, 1.2);
+  WallExtractionConfig cfg;
+  const auto result = WallExtractor(cfg).extract(scene.cloud);
+  EXPECT_TRUE(matching(result.walls, {-1, 0, 0}, 4.5).empty());
+  EXPECT_EQ(matching(result.walls, {-1, 0, 0}, 5.0).size(), 1u);  // the wall behind stays
+  EXPECT_EQ(matching(result.walls, {1, 0, 0}, 3.0).size(), 1u);
+  // Without the test the cabinet is a wall.
+  cfg.seen_over_min_points = 0;
+  EXPECT_EQ(matching(WallExtractor(cfg).extract(scene.cloud).walls, {-1, 0, 0}, 4.5).size(), 1u);
+}
+
+TEST(WallExtraction, AHalfWallInLineWithAWallIsCutOffIt) {
+  // The line x = 5 holds a full-height wall (y -2..1) and, in line with it, a half wall (y 1..4,
+  // up to the sensor's height) with a hall behind it (wall x = 9): one plane, one run of inliers.
+  // Rays over the half wall reach the hall, so only the full-height wall remains.
+  test::SyntheticScene scene;
+  scene.wall({5, -2}, {5, 1}, -0.8, 1.8);
+  scene.wall({5, 1}, {5, 4}, -0.8, 0.0);
+  scene.wall({9, -2}, {9, 6}, -0.8, 1.8);
+  scene.slab(-1, 9, -2, 6, -0.8);
+  const auto walls =
+      matching(WallExtractor(WallExtractionConfig{}).extract(scene.cloud).walls, {-1, 0, 0}, 5.0);
+  ASSERT_EQ(walls.size(), 1u);
+  // The cut falls on the stretches of max_gap (0.5 m): the one holding the joint stays.
+  EXPECT_TRUE(spans(walls[0], {5, -2}, {5, 1}, 0.55))
+      << walls[0].endpoints[0].transpose() << " / " << walls[0].endpoints[1].transpose();
 }
 
 TEST(WallExtraction, RotatedRoomGivesRotatedNormals) {

@@ -64,6 +64,15 @@ struct WallExtractionConfig {
   double min_wall_top = 1.0;
   /// A top within this elevation of the scan's highest beam is cut by the field of view (deg).
   double fov_top_margin_deg = 3.0;
+  /// A stretch of max_gap along a segment over whose top the scan saw this many points of a
+  /// surface beyond it (rays that cross the segment's line there above its top) stands in front
+  /// of something: a cabinet, a shelf, a half wall, not a wall, which meets the ceiling. Such
+  /// stretches are cut out of the segment. 0 = off.
+  int seen_over_min_points = 3;
+  /// ...points at least this far behind the segment's plane (m)...
+  double seen_over_depth = 0.3;
+  /// ...on rays at least this far above the stretch's top where they cross it (m).
+  double seen_over_clearance = 0.1;
   /// Horizontal planes with fewer inliers are not reported (their points are still removed).
   int min_horizontal_inliers = 200;
   /// Seed of the random sampling.
@@ -92,6 +101,9 @@ struct WallExtractionConfig {
     v("min_coverage", min_coverage);
     v("min_wall_top", min_wall_top);
     v("fov_top_margin_deg", fov_top_margin_deg);
+    v("seen_over_min_points", seen_over_min_points);
+    v("seen_over_depth", seen_over_depth);
+    v("seen_over_clearance", seen_over_clearance);
     v("min_horizontal_inliers", min_horizontal_inliers);
     v("seed", seed);
   }

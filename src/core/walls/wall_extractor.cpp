@@ -40,6 +40,9 @@ void WallExtractionConfig::validate() const {
   requireConfig(min_wall_top >= 0.0, p + "min_wall_top", "must be >= 0 (0 = off)");
   requireConfig(fov_top_margin_deg >= 0.0 && fov_top_margin_deg < 90.0, p + "fov_top_margin_deg",
                 "must be in [0, 90)");
+  requireConfig(seen_over_min_points >= 0, p + "seen_over_min_points", "must be >= 0 (0 = off)");
+  requireConfig(seen_over_depth >= 0.0, p + "seen_over_depth", "must be >= 0");
+  requireConfig(seen_over_clearance >= 0.0, p + "seen_over_clearance", "must be >= 0");
   requireConfig(min_horizontal_inliers >= 3, p + "min_horizontal_inliers", "must be >= 3");
 }
 
@@ -281,6 +284,83 @@ bool makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
   return true;
 }
 
+// Seen over: scan rays that cross a segment's line between its ends above its top and hit a
+// surface beyond it. A wall meets the ceiling (rays over its top hit the ceiling on the near side)
+// or the sky (no return); a cabinet or a partition in front of a wall lets rays over it reach the
+// wall behind. Rays through doorways and windows cross below the top and do not count (rays under
+// a segment do not either: through a doorway under its lintel they would). Counted per stretch of
+// max_gap along the wall, each with its own top: true when some stretch has seen_over_min_points
+// such points, with `over` marking those stretches (a full-height wall and a collinear half wall
+// can make one run; only the half wall's stretches are seen over).
+bool seenOver(const Points& pts, const std::vector<uint32_t>& run, const WallSegment& wall,
+              const View& view, const WallExtractionConfig& cfg, std::vector<uint8_t>* over) {
+  over->clear();
+  if (cfg.seen_over_min_points <= 0 || wall.length() <= 0.0) return false;
+  const Eigen::Vector2d n = wall.normal.head<2>().normalized();
+  const Eigen::Vector2d e0 = wall.endpoints[0];
+  const Eigen::Vector2d u = (wall.endpoints[1] - e0) / wall.length();
+  const Eigen::Vector3d& v = view.viewpoint;
+  const double s_v = n.dot(v.head<2>()) + wall.d;  // > 0: normals face the viewpoint
+  if (s_v <= 0.0) return false;
+  // Each stretch's own top: a half wall in line with a full-height wall is lower.
+  const size_t bins = static_cast<size_t>(wall.length() / cfg.max_gap) + 1;
+  std::vector<double> top(bins, -std::numeric_limits<double>::infinity());
+  for (uint32_t i : run) {
+    const double t = u.dot(pts[i].head<2>().cast<double>() - e0);
+    const size_t k = static_cast<size_t>(std::clamp(t / cfg.max_gap, 0.0, bins - 1.0));
+    top[k] = std::max(top[k], static_cast<double>(pts[i].z()));
+  }
+  for (double& z : top) z = std::isfinite(z) ? z : wall.z_max;  // a gap in the run
+  std::vector<int> count(bins, 0);
+  bool any = false;
+  for (const Eigen::Vector3f& pf : pts) {
+    const Eigen::Vector3d p = pf.cast<double>();
+    const double s_p = n.dot(p.head<2>()) + wall.d;
+    if (s_p > -cfg.seen_over_depth) continue;                   // not beyond the segment's plane
+    const Eigen::Vector3d c = v + s_v / (s_v - s_p) * (p - v);  // where the ray crosses it
+    const double t = u.dot(c.head<2>() - e0);
+    if (t < 0.0 || t > wall.length()) continue;
+    const size_t k = static_cast<size_t>(t / cfg.max_gap);
+    if (c.z() < top[k] + cfg.seen_over_clearance) continue;  // not over the stretch's top
+    any |= ++count[k] >= cfg.seen_over_min_points;
+  }
+  if (!any) return false;
+  over->resize(count.size());
+  for (size_t k = 0; k < count.size(); ++k) (*over)[k] = count[k] >= cfg.seen_over_min_points;
+  return true;
+}
+
+// The wall segments of one run of inliers: the run's segment, or, when stretches of it were seen
+// over, the segments of what lies between those stretches.
+void appendWalls(const Points& pts, const std::vector<uint32_t>& run,
+                 const WallExtractionConfig& cfg, const View& view,
+                 std::vector<WallSegment>* walls) {
+  WallSegment wall;
+  if (!makeWallSegment(pts, run, cfg, view, &wall)) return;
+  std::vector<uint8_t> over;
+  if (!seenOver(pts, run, wall, view, cfg, &over)) {
+    walls->push_back(wall);
+    return;
+  }
+  const Eigen::Vector2d e0 = wall.endpoints[0];
+  const Eigen::Vector2d u = (wall.endpoints[1] - e0) / wall.length();
+  std::vector<std::pair<double, uint32_t>> kept;  // (position along the wall, index)
+  for (uint32_t i : run) {
+    const double t = u.dot(pts[i].head<2>().cast<double>() - e0);
+    const size_t bin = static_cast<size_t>(std::clamp(t / cfg.max_gap, 0.0, over.size() - 1.0));
+    if (!over[bin]) kept.emplace_back(t, i);
+  }
+  std::sort(kept.begin(), kept.end());
+  std::vector<uint32_t> piece;
+  for (size_t k = 0; k < kept.size(); ++k) {
+    piece.push_back(kept[k].second);
+    if (k + 1 < kept.size() && kept[k + 1].first - kept[k].first <= cfg.max_gap) continue;
+    WallSegment w;
+    if (makeWallSegment(pts, piece, cfg, view, &w)) walls->push_back(w);
+    piece.clear();
+  }
+}
+
 // Splits the inliers of a vertical plane into runs along the wall separated by > max_gap and
 // appends the runs that make valid segments. Runs and their extents come from the inliers off the
 // plane's floor and ceiling lines (edge_band); those lines cross doorways, so their inliers only
@@ -316,8 +396,7 @@ void splitIntoWalls(const Points& pts, const std::vector<uint32_t>& inliers, con
     for (; e < edge.size() && edge[e].first <= t1; ++e) {
       if (edge[e].first >= t0) run.push_back(edge[e].second);
     }
-    WallSegment wall;
-    if (makeWallSegment(pts, run, cfg, view, &wall)) walls->push_back(wall);
+    appendWalls(pts, run, cfg, view, walls);
     run.clear();
   }
 }
