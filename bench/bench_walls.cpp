@@ -1,10 +1,12 @@
 // bench_walls: time of wall extraction per keyframe, printed as a markdown table.
 //
-//   bench_walls [--data DIR] [--repeats N]
+//   bench_walls [--data DIR] [--repeats N] [--draw OUT_DIR]
 //
 // Clouds: the two real PCL room scans (DIR/pcl_room_scans, default ../shared/data beside the
 // source tree) and VLP-16-like ring clouds ray-cast in synthetic rooms (16 rings over +-15 deg,
-// 0.2 deg azimuth steps, 1 cm range noise). Target: <= 20 ms per VLP-16 keyframe.
+// 0.2 deg azimuth steps, 1 cm range noise). Target: <= 20 ms per VLP-16 keyframe. With --draw,
+// each real scan is drawn top-down to OUT_DIR/<scan>_walls.png: points grey, wall segments in
+// colour with their normal, the sensor as a circle.
 #include <pcl/io/pcd_io.h>
 
 #include <algorithm>
@@ -17,6 +19,7 @@
 #include <vector>
 
 #include "tacs_graphs/common/timing.h"
+#include "tacs_graphs/viz/canvas.h"
 #include "tacs_graphs/walls/wall_extractor.h"
 
 namespace {
@@ -122,21 +125,54 @@ Row run(const std::string& name, const std::vector<PointCloud>& clouds, int repe
   return row;
 }
 
+// Top-down picture of a real scan and the walls extracted from it.
+void drawWalls(const PointCloud& cloud, const std::string& path) {
+  const tacs::WallExtractionResult result =
+      tacs::WallExtractor(tacs::WallExtractionConfig{}).extract(cloud);
+  Eigen::Vector2d lo(-1.0, -1.0), hi(1.0, 1.0);
+  for (const auto& p : cloud.points) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
+    lo = lo.cwiseMin(Eigen::Vector2d(p.x, p.y));
+    hi = hi.cwiseMax(Eigen::Vector2d(p.x, p.y));
+  }
+  tacs::viz::Canvas canvas(lo.array() - 0.5, hi.array() + 0.5, 0.02);
+  for (const auto& p : cloud.points) {
+    if (std::isfinite(p.x) && std::isfinite(p.y))
+      canvas.fillCircle({p.x, p.y}, 0.01, {0, 0, 0, 40});
+  }
+  const tacs::viz::Rgba colours[] = {
+      {220, 40, 40, 255}, {40, 120, 220, 255}, {30, 160, 60, 255}, {230, 140, 20, 255}};
+  for (size_t i = 0; i < result.walls.size(); ++i) {
+    const tacs::WallSegment& w = result.walls[i];
+    const tacs::viz::Rgba c = colours[i % 4];
+    canvas.drawLine(w.endpoints[0], w.endpoints[1], c, 4.0);
+    const Eigen::Vector2d mid = w.midpoint();
+    canvas.drawLine(mid, mid + 0.4 * w.normal.head<2>(), c, 2.0);
+  }
+  canvas.drawCircle({0.0, 0.0}, 0.15, {0, 0, 0, 255}, 2.0);
+  canvas.savePng(path);
+  std::cerr << "bench_walls: " << result.walls.size() << " walls -> " << path << "\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string data_dir;
+  std::string data_dir, draw_dir;
   int repeats = 20;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--data" && i + 1 < argc) {
       data_dir = argv[++i];
+    } else if (arg == "--draw" && i + 1 < argc) {
+      draw_dir = argv[++i];
     } else if (arg == "--repeats" && i + 1 < argc) {
       repeats = std::max(1, std::atoi(argv[++i]));
     } else {
-      std::cout << "Usage: bench_walls [--data DIR] [--repeats N]\n"
+      std::cout << "Usage: bench_walls [--data DIR] [--repeats N] [--draw OUT_DIR]\n"
                    "Times wall extraction (default config) on the PCL room scans in\n"
-                   "DIR/pcl_room_scans and on synthetic VLP-16 ring clouds; prints markdown.\n";
+                   "DIR/pcl_room_scans and on synthetic VLP-16 ring clouds; prints markdown.\n"
+                   "--draw writes OUT_DIR/<scan>_walls.png: the real scans top-down with their "
+                   "walls.\n";
       return arg == "--help" || arg == "-h" ? 0 : 2;
     }
   }
@@ -161,6 +197,10 @@ int main(int argc, char** argv) {
     PointCloud cloud;
     pcl::copyPointCloud(xyz, cloud);
     rows.push_back(run("PCL " + scan + " (real)", {cloud}, repeats));
+    if (!draw_dir.empty()) {
+      std::filesystem::create_directories(draw_dir);
+      drawWalls(cloud, draw_dir + "/" + std::filesystem::path(scan).stem().string() + "_walls.png");
+    }
   }
 
   // VLP-16 at 0.7 m in a 10 x 8 x 2.8 m room with furniture, 5 poses, building at 30 deg.
