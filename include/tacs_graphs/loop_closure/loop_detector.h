@@ -2,11 +2,12 @@
 //
 // CoSG-LCD (paper Sec. III-D): run when a room observation is associated with a room already in
 // the graph. Candidates are that room's keyframes within d_loop of the query, restricted to the
-// two partitions of a large room nearest the query. Each is registered with GICP from the
-// current pose estimates; the best pair of each searched partition is a loop when it reaches
-// S_coarse (Fig. 5(b)), unless its candidate lies within L_part along the path of a better loop's
-// candidate (the same stretch of the earlier visit, which the odometry already holds together:
-// the second loop would only repeat the first). When no pair reaches S_coarse (large initial pose
+// two partitions of a large room nearest the query, searched nearest first. Each is registered
+// with GICP from the current pose estimates; the best pair of each searched partition is a loop
+// when it reaches S_coarse (Fig. 5(b)), unless its candidate lies within L_part along the path of
+// an accepted loop's candidate (the same stretch of the earlier visit, which the odometry already
+// holds together: the second loop would only repeat the first); a partition whose candidates all
+// lie there is not registered at all. When no pair reaches S_coarse (large initial pose
 // error), the weaker matches reaching the relaxed S_fine are refined coarse-to-fine, with
 // correspondence gates shrinking from wide to narrow, and the refined best is a loop when it
 // reaches S_coarse. The match score S is the share of the query's wall-like points, within the
