@@ -20,6 +20,7 @@
 
 #include "tacs_graphs/common/timing.h"
 #include "tacs_graphs/viz/canvas.h"
+#include "tacs_graphs/viz/scene_graph_drawing.h"
 #include "tacs_graphs/walls/wall_extractor.h"
 
 namespace {
@@ -140,11 +141,9 @@ void drawWalls(const PointCloud& cloud, const std::string& path) {
     if (std::isfinite(p.x) && std::isfinite(p.y))
       canvas.fillCircle({p.x, p.y}, 0.01, {0, 0, 0, 40});
   }
-  const tacs::viz::Rgba colours[] = {
-      {220, 40, 40, 255}, {40, 120, 220, 255}, {30, 160, 60, 255}, {230, 140, 20, 255}};
   for (size_t i = 0; i < result.walls.size(); ++i) {
     const tacs::WallSegment& w = result.walls[i];
-    const tacs::viz::Rgba c = colours[i % 4];
+    const tacs::viz::Rgba c = tacs::viz::roomColor(static_cast<uint32_t>(i), 255);
     canvas.drawLine(w.endpoints[0], w.endpoints[1], c, 4.0);
     const Eigen::Vector2d mid = w.midpoint();
     canvas.drawLine(mid, mid + 0.4 * w.normal.head<2>(), c, 2.0);

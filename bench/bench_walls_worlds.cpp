@@ -103,9 +103,11 @@ double alongFace(const Face& f, const Eigen::Vector2d& p) {
   return (f.b - f.a).normalized().dot(p - f.a);
 }
 
-double distanceToFace(const Face& f, const Eigen::Vector2d& p) {
-  const double t = std::clamp(alongFace(f, p), 0.0, f.length());
-  return (f.a + t * (f.b - f.a).normalized() - p).norm();
+double distanceToSegment(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                         const Eigen::Vector2d& p) {
+  const Eigen::Vector2d ab = b - a;
+  const double t = std::clamp(ab.dot(p - a) / std::max(ab.squaredNorm(), 1e-12), 0.0, 1.0);
+  return (a + t * ab - p).norm();
 }
 
 // A wall (detection or landmark, world frame) matches a face: same side, same plane, overlap.
@@ -125,7 +127,7 @@ std::vector<bool> visibleFaces(const std::vector<Face>& faces,
   std::vector<bool> visible(faces.size(), false);
   for (size_t k = 0; k < faces.size(); ++k) {
     const Face& f = faces[k];
-    if (!f.ground_truth || distanceToFace(f, robot) > kVisibleRange) continue;
+    if (!f.ground_truth || distanceToSegment(f.a, f.b, robot) > kVisibleRange) continue;
     size_t seen = 0;
     double t_min = f.length(), t_max = 0.0;
     for (const auto& p : points) {
@@ -152,13 +154,6 @@ const char* const kMissNames[kMissKinds] = {"far", "barely seen", "short", "low"
 Miss missKind(const Face& f, const std::vector<bool>& visible, size_t k, bool in_range) {
   if (f.ground_truth) return in_range && !visible[k] ? kBarelySeen : kFar;
   return f.z_max >= kMinWallTop ? kShort : kLow;
-}
-
-double distanceToSegment(const Eigen::Vector2d endpoints[2], const Eigen::Vector2d& p) {
-  const Eigen::Vector2d ab = endpoints[1] - endpoints[0];
-  const double t =
-      std::clamp(ab.dot(p - endpoints[0]) / std::max(ab.squaredNorm(), 1e-12), 0.0, 1.0);
-  return (endpoints[0] + t * ab - p).norm();
 }
 
 struct WorldScore {
@@ -205,7 +200,8 @@ WorldScore runWorld(const std::string& path, const tacs::bench::WorldsArgs& args
     std::vector<bool> found(faces.size(), false);
     for (const auto& wall : extracted.walls) {
       const tacs::WallSegment w = tacs::transformWall(wall, T_world_level);
-      const bool near = distanceToSegment(w.endpoints, last.head<2>()) <= kVisibleRange;
+      const bool near =
+          distanceToSegment(w.endpoints[0], w.endpoints[1], last.head<2>()) <= kVisibleRange;
       bool tp = false, any = false;
       Miss miss = kNothing;
       for (size_t k = 0; k < faces.size(); ++k) {

@@ -284,79 +284,90 @@ bool makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
   return true;
 }
 
+// Stretches of max_gap along a wall segment, numbered from endpoints[0].
+struct Stretches {
+  Stretches(const WallSegment& wall, double size)
+      : e0(wall.endpoints[0]),
+        u((wall.endpoints[1] - e0).normalized()),
+        length(wall.length()),
+        size(size),
+        count(static_cast<size_t>(length / size) + 1) {}
+  double along(const Eigen::Vector2d& xy) const { return u.dot(xy - e0); }
+  size_t of(double t) const { return static_cast<size_t>(std::clamp(t / size, 0.0, count - 1.0)); }
+
+  Eigen::Vector2d e0, u;
+  double length, size;
+  size_t count;
+};
+
 // Seen over: scan rays that cross a segment's line between its ends above its top and hit a
 // surface beyond it. A wall meets the ceiling (rays over its top hit the ceiling on the near side)
 // or the sky (no return); a cabinet or a partition in front of a wall lets rays over it reach the
 // wall behind. Rays through doorways and windows cross below the top and do not count (rays under
-// a segment do not either: through a doorway under its lintel they would). Counted per stretch of
-// max_gap along the wall, each with its own top: true when some stretch has seen_over_min_points
-// such points, with `over` marking those stretches (a full-height wall and a collinear half wall
-// can make one run; only the half wall's stretches are seen over).
-bool seenOver(const Points& pts, const std::vector<uint32_t>& run, const WallSegment& wall,
-              const View& view, const WallExtractionConfig& cfg, std::vector<uint8_t>* over) {
-  over->clear();
-  if (cfg.seen_over_min_points <= 0 || wall.length() <= 0.0) return false;
+// a segment do not either: through a doorway under its lintel they would). Judged per stretch,
+// each with its own top (a full-height wall and a collinear half wall can make one run; only the
+// half wall's stretches are seen over): returns per stretch whether seen_over_min_points such
+// points were found. `stretch_of` gives the stretch of each inlier of `run`.
+std::vector<uint8_t> seenOver(const Points& pts, const std::vector<uint32_t>& run,
+                              const std::vector<size_t>& stretch_of, const WallSegment& wall,
+                              const Stretches& stretches, const View& view,
+                              const WallExtractionConfig& cfg) {
+  std::vector<uint8_t> over(stretches.count, 0);
   const Eigen::Vector2d n = wall.normal.head<2>().normalized();
-  const Eigen::Vector2d e0 = wall.endpoints[0];
-  const Eigen::Vector2d u = (wall.endpoints[1] - e0) / wall.length();
   const Eigen::Vector3d& v = view.viewpoint;
   const double s_v = n.dot(v.head<2>()) + wall.d;  // > 0: normals face the viewpoint
-  if (s_v <= 0.0) return false;
-  // Each stretch's own top: a half wall in line with a full-height wall is lower.
-  const size_t bins = static_cast<size_t>(wall.length() / cfg.max_gap) + 1;
-  std::vector<double> top(bins, -std::numeric_limits<double>::infinity());
-  for (uint32_t i : run) {
-    const double t = u.dot(pts[i].head<2>().cast<double>() - e0);
-    const size_t k = static_cast<size_t>(std::clamp(t / cfg.max_gap, 0.0, bins - 1.0));
-    top[k] = std::max(top[k], static_cast<double>(pts[i].z()));
+  if (s_v <= 0.0) return over;
+  std::vector<double> top(stretches.count, -std::numeric_limits<double>::infinity());
+  for (size_t k = 0; k < run.size(); ++k) {
+    top[stretch_of[k]] = std::max(top[stretch_of[k]], static_cast<double>(pts[run[k]].z()));
   }
   for (double& z : top) z = std::isfinite(z) ? z : wall.z_max;  // a gap in the run
-  std::vector<int> count(bins, 0);
-  bool any = false;
+  std::vector<int> count(stretches.count, 0);
   for (const Eigen::Vector3f& pf : pts) {
     const Eigen::Vector3d p = pf.cast<double>();
     const double s_p = n.dot(p.head<2>()) + wall.d;
     if (s_p > -cfg.seen_over_depth) continue;                   // not beyond the segment's plane
     const Eigen::Vector3d c = v + s_v / (s_v - s_p) * (p - v);  // where the ray crosses it
-    const double t = u.dot(c.head<2>() - e0);
-    if (t < 0.0 || t > wall.length()) continue;
-    const size_t k = static_cast<size_t>(t / cfg.max_gap);
+    const double t = stretches.along(c.head<2>());
+    if (t < 0.0 || t > stretches.length) continue;
+    const size_t k = stretches.of(t);
     if (c.z() < top[k] + cfg.seen_over_clearance) continue;  // not over the stretch's top
-    any |= ++count[k] >= cfg.seen_over_min_points;
+    over[k] = ++count[k] >= cfg.seen_over_min_points;
   }
-  if (!any) return false;
-  over->resize(count.size());
-  for (size_t k = 0; k < count.size(); ++k) (*over)[k] = count[k] >= cfg.seen_over_min_points;
-  return true;
+  return over;
 }
 
 // The wall segments of one run of inliers: the run's segment, or, when stretches of it were seen
-// over, the segments of what lies between those stretches.
+// over, the segments of the pieces between those stretches.
 void appendWalls(const Points& pts, const std::vector<uint32_t>& run,
                  const WallExtractionConfig& cfg, const View& view,
                  std::vector<WallSegment>* walls) {
   WallSegment wall;
   if (!makeWallSegment(pts, run, cfg, view, &wall)) return;
-  std::vector<uint8_t> over;
-  if (!seenOver(pts, run, wall, view, cfg, &over)) {
+  if (cfg.seen_over_min_points <= 0 || wall.length() <= 0.0) {
     walls->push_back(wall);
     return;
   }
-  const Eigen::Vector2d e0 = wall.endpoints[0];
-  const Eigen::Vector2d u = (wall.endpoints[1] - e0) / wall.length();
-  std::vector<std::pair<double, uint32_t>> kept;  // (position along the wall, index)
-  for (uint32_t i : run) {
-    const double t = u.dot(pts[i].head<2>().cast<double>() - e0);
-    const size_t bin = static_cast<size_t>(std::clamp(t / cfg.max_gap, 0.0, over.size() - 1.0));
-    if (!over[bin]) kept.emplace_back(t, i);
+  const Stretches stretches(wall, cfg.max_gap);
+  std::vector<size_t> stretch_of(run.size());
+  for (size_t k = 0; k < run.size(); ++k) {
+    stretch_of[k] = stretches.of(stretches.along(pts[run[k]].head<2>().cast<double>()));
   }
-  std::sort(kept.begin(), kept.end());
+  const std::vector<uint8_t> over = seenOver(pts, run, stretch_of, wall, stretches, view, cfg);
+  if (std::none_of(over.begin(), over.end(), [](uint8_t o) { return o != 0; })) {
+    walls->push_back(wall);
+    return;
+  }
+  std::vector<std::vector<uint32_t>> by_stretch(stretches.count);
+  for (size_t k = 0; k < run.size(); ++k) by_stretch[stretch_of[k]].push_back(run[k]);
   std::vector<uint32_t> piece;
-  for (size_t k = 0; k < kept.size(); ++k) {
-    piece.push_back(kept[k].second);
-    if (k + 1 < kept.size() && kept[k + 1].first - kept[k].first <= cfg.max_gap) continue;
+  for (size_t k = 0; k <= stretches.count; ++k) {
+    if (k < stretches.count && !over[k]) {
+      piece.insert(piece.end(), by_stretch[k].begin(), by_stretch[k].end());
+      continue;
+    }
     WallSegment w;
-    if (makeWallSegment(pts, piece, cfg, view, &w)) walls->push_back(w);
+    if (!piece.empty() && makeWallSegment(pts, piece, cfg, view, &w)) walls->push_back(w);
     piece.clear();
   }
 }
