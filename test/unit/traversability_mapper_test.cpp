@@ -92,6 +92,32 @@ TEST(TraversabilityMapper, GroundPrecisionAndRecall) {
   }
 }
 
+// A VLP-16 0.5 m above the floor of a 2 m wide corridor: the lowest scan line on each wall is
+// level, 0.23 m up and alone in its nodes, yet no floor; the floor at the walls' feet shares
+// nodes with the walls, yet is ground.
+TEST(TraversabilityMapper, CorridorWallFeetAreNotGroundTheFloorBesideThemIs) {
+  Scene scene;
+  scene.floor(-12, -1.0, 12, 1.0, 0.0);
+  scene.add(-12, -1.2, 0, 12, -1.0, 2.5, false);
+  scene.add(-12, 1.0, 0, 12, 1.2, 2.5, false);
+  for (double yaw : {0.0, 0.4}) {
+    const Pose3 T_world_base = poseFromXyzRpy(0, 0, 0, 0, 0, yaw);
+    const test::SyntheticScan scan =
+        test::castScan(scene, test::LidarModel::vlp16(),
+                       T_world_base * poseFromXyzRpy(0, 0, 0.5, 0, 0, 0), T_world_base);
+    const TraversabilityResult result = TraversabilityMapper({}).process(scan.cloud);
+    size_t on_wall = 0, found = 0, truth = 0;
+    for (const auto& p : result.ground->points) {
+      on_wall += p.z > 0.1f;  // the wall's foot, up to a few cm, is part of the floor
+      found += scan.is_ground[static_cast<size_t>(p.intensity)];
+    }
+    for (uint8_t g : scan.is_ground) truth += g;
+    SCOPED_TRACE("yaw " + std::to_string(yaw));
+    EXPECT_EQ(on_wall, 0u);
+    EXPECT_GE(static_cast<double>(found) / truth, 0.97);
+  }
+}
+
 TEST(TraversabilityMapper, HazardsAreNotConnectedDoorwaysAre) {
   const Scene scene = testScene();
   for (const Pose2& pose : kPoses) {

@@ -170,7 +170,7 @@ TraversabilityResult TraversabilityMapper::process(const PointCloud& scan_in_bas
   trav::fitNodePlanes(scan, grid, c, &models);
   trav::fillBlindDisc(grid, c, &models);
   trav::inferUnobserved(grid, c, &models, &ws.slot, &ws.evidence);
-  trav::classifyPoints(models, c, &ws.scan);
+  trav::classifyPoints(grid, models, c, &ws.scan);
   const trav::ClearanceField field(scan, grid, c, &models, &ws.distance);
 
   const int root = findRoot(grid, models, c);

@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace tacs::trav {
 
@@ -121,6 +122,28 @@ bool fitPlane(const std::vector<Eigen::Vector3f>& pts, const std::vector<uint32_
   return true;
 }
 
+// True when the node's single scan line is the lowest line on a wall or box side: most points
+// from plane_distance to robot_height above the line stand in the vertical plane through it. A
+// floor line in front of a wall has the wall's points behind it, off that plane. Without this test
+// the level plane through a wall's lowest line makes a "floor" up to max_ground_height above the
+// real one.
+bool footOfVerticalFace(const BucketedScan& scan, const NodeModel& m, const PlaneFit& line,
+                        const TraversabilityConfig& c) {
+  const Eigen::Vector2d along = line.line.head<2>();
+  if (along.norm() < 1e-6) return false;
+  const Eigen::Vector2d across = Eigen::Vector2d(-along.y(), along.x()).normalized();
+  constexpr double kInPlane = 0.05;  // [m] a point this close to the vertical plane lies on it
+  int above = 0, in_plane = 0;
+  const uint32_t* ids = scan.order.data() + m.begin;
+  for (uint32_t k = 0; k < m.count; ++k) {
+    const Eigen::Vector3d p = scan.points[ids[k]].cast<double>() - line.mean;
+    if (p.z() <= c.plane_distance || p.z() > c.robot_height) continue;  // not the ceiling
+    ++above;
+    in_plane += std::abs(across.dot(p.head<2>())) < kInPlane;
+  }
+  return above > 0 && 2 * in_plane > above;
+}
+
 void fitNode(const BucketedScan& scan, const TraversabilityConfig& c, NodeModel* m,
              std::vector<float>* zbuf, std::vector<uint32_t>* sel) {
   const uint32_t* ids = scan.order.data() + m->begin;
@@ -152,17 +175,23 @@ void fitNode(const BucketedScan& scan, const TraversabilityConfig& c, NodeModel*
   double thickness_var = fit.eigenvalues(0), line_penalty = 0.0;
   if (std::sqrt(fit.eigenvalues(1)) < c.min_plane_width) {
     // One scan line grazing the node: points on a line, which fixes the plane only up to a
-    // rotation about it. Take the most level plane through the line (floors seen from afar);
-    // a steep line (a pole, a wall edge) is no ground.
+    // rotation about it. Take the most level plane through the line (floors seen from afar); a
+    // line steeper than a ground plane may be (a pole, a wall edge, a ring curving on a wall
+    // close by) is no ground.
     const Eigen::Vector3d dir = fit.line;
     const Eigen::Vector3d level = Eigen::Vector3d::UnitZ() - dir.z() * dir;
-    if (level.norm() < 0.5) {
+    if (std::abs(dir.z()) > std::sin(c.max_slope_deg * M_PI / 180.0)) {
       m->label = TravLabel::kNonGround;
       return;
     }
     fit.normal = level.normalized();
+    if (footOfVerticalFace(scan, *m, fit, c)) {
+      m->label = TravLabel::kNonGround;
+      return;
+    }
     thickness_var = fit.normal.dot(fit.cov * fit.normal);
     line_penalty = c.plane_distance * c.plane_distance;  // weaker evidence than a true plane
+    m->single_line = true;
   }
   m->has_plane = true;
   m->normal = fit.normal;
@@ -205,10 +234,53 @@ bool isObstaclePoint(const NodeModel& m, const Eigen::Vector3f& p, const Travers
   return h >= c.obstacle_min_height && h <= c.robot_height;
 }
 
-void classifyPoints(const std::vector<NodeModel>& models, const TraversabilityConfig& config,
-                    BucketedScan* scan) {
+namespace {
+
+// Ground nodes near node k whose plane may be lent to its points: observed (not inferred) ground
+// in its own or an adjacent cell, at the height of the node's lowest point (the floor under a
+// wall's foot, not the top of a low box next to it).
+void lendingNodes(const TriGrid& grid, const std::vector<NodeModel>& models, size_t k,
+                  const BucketedScan& scan, const TraversabilityConfig& config,
+                  std::vector<const NodeModel*>* out) {
+  out->clear();
+  const NodeModel& m = models[k];
+  float lowest = std::numeric_limits<float>::infinity();
+  for (uint32_t a = 0; a < m.count; ++a) {
+    lowest = std::min(lowest, scan.points[scan.order[m.begin + a]].z());
+  }
+  const int n = grid.cells(), row = static_cast<int>(k / 4) / n, col = static_cast<int>(k / 4) % n;
+  for (int r = std::max(0, row - 1); r <= std::min(n - 1, row + 1); ++r) {
+    for (int q = std::max(0, col - 1); q <= std::min(n - 1, col + 1); ++q) {
+      for (int tri = 0; tri < 4; ++tri) {
+        const NodeModel& t = models[(r * n + q) * 4 + tri];
+        if (t.isGround() && !t.inferred &&
+            std::abs(t.position.z() - lowest) < config.plane_distance) {
+          out->push_back(&t);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void classifyPoints(const TriGrid& grid, const std::vector<NodeModel>& models,
+                    const TraversabilityConfig& config, BucketedScan* scan) {
   scan->point_class.assign(scan->points.size(), kOtherPoint);
-  for (const NodeModel& m : models) {
+  // A node that is not ground itself (a wall's foot, too few points) still holds floor points:
+  // the ones at the height of a nearby ground node (lendingNodes). The lent height is taken
+  // level and the band is half as wide, as it is extrapolated. A point in the obstacle band of
+  // its own node stays an obstacle, so lending never opens a gap in the clearance field.
+  const double lent_band = 0.5 * config.plane_distance;
+  std::vector<const NodeModel*> lenders;
+  for (size_t k = 0; k < models.size(); ++k) {
+    const NodeModel& m = models[k];
+    if (m.count == 0) continue;
+    if (m.isGround()) {
+      lenders.clear();
+    } else {
+      lendingNodes(grid, models, k, *scan, config, &lenders);
+    }
     for (uint32_t a = 0; a < m.count; ++a) {
       const uint32_t i = scan->order[m.begin + a];
       const Eigen::Vector3f& p = scan->points[i];
@@ -216,6 +288,13 @@ void classifyPoints(const std::vector<NodeModel>& models, const TraversabilityCo
         scan->point_class[i] = kGroundPoint;
       } else if (isObstaclePoint(m, p, config)) {
         scan->point_class[i] = kObstaclePoint;
+      } else {
+        for (const NodeModel* t : lenders) {
+          if (std::abs(p.z() - t->position.z()) < lent_band) {
+            scan->point_class[i] = kGroundPoint;
+            break;
+          }
+        }
       }
     }
   }

@@ -43,6 +43,7 @@ struct NodeModel {
   TravLabel label = TravLabel::kUnknown;
   bool has_plane = false;  // normal/d are meaningful (fitted or inferred)
   bool inferred = false;
+  bool single_line = false;  // the plane is the most level one through a single scan line
   float variance = 0.0f;
   uint32_t begin = 0, count = 0;  // range in the node-sorted point order
   float clearance = 0.0f;         // from the triangle (nearest point of it) [m]
@@ -108,9 +109,10 @@ void inferUnobserved(const TriGrid& grid, const TraversabilityConfig& config,
 
 enum PointClass : uint8_t { kOtherPoint = 0, kGroundPoint = 1, kObstaclePoint = 2 };
 
-/// Classifies every bucketed point as ground, obstacle or other (BucketedScan::point_class).
-void classifyPoints(const std::vector<NodeModel>& models, const TraversabilityConfig& config,
-                    BucketedScan* scan);
+/// Classifies every bucketed point as ground, obstacle or other (BucketedScan::point_class). A
+/// point of a node without ground may be ground at the height of observed ground next to it.
+void classifyPoints(const TriGrid& grid, const std::vector<NodeModel>& models,
+                    const TraversabilityConfig& config, BucketedScan* scan);
 
 /// True for a ground point of a node with a ground plane.
 bool isGroundPoint(const NodeModel& m, const Eigen::Vector3f& p, const TraversabilityConfig& c);
