@@ -118,6 +118,24 @@ TEST(TraversabilityMapper, CorridorWallFeetAreNotGroundTheFloorBesideThemIs) {
   }
 }
 
+// The sensor's blind disc (no floor seen within 1.9 m of a VLP-16 0.5 m up) is filled, but not
+// through a wall 1 m away: the room behind it stays unknown and out of the traversable graph.
+TEST(TraversabilityMapper, BlindDiscStopsAtAWall) {
+  Scene scene;
+  scene.floor(-8, -8, 8, 8, 0.0);
+  scene.add(-8, 1.0, 0, 8, 1.15, 2.5, false);
+  const test::SyntheticScan scan = test::castScan(
+      scene, test::LidarModel::vlp16(), poseFromXyzRpy(0, 0, 0.5, 0, 0, 0), Pose3::Identity());
+  const TraversabilityResult result = TraversabilityMapper({}).process(scan.cloud);
+  size_t blind = 0, beyond = 0;
+  for (const TravNode& v : result.graph.nodes) {
+    if (v.position.y() < 0.9 && v.position.head<2>().norm() < 1.5) blind += v.traversable;
+    if (v.position.y() > 1.2) beyond += v.label == TravLabel::kGround || v.traversable;
+  }
+  EXPECT_GT(blind, 20u);  // the disc on the robot's side is filled
+  EXPECT_EQ(beyond, 0u);
+}
+
 TEST(TraversabilityMapper, HazardsAreNotConnectedDoorwaysAre) {
   const Scene scene = testScene();
   for (const Pose2& pose : kPoses) {

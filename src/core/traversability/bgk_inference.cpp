@@ -31,6 +31,19 @@ void setInferredGround(NodeModel* m, const Eigen::Vector3d& normal, double z, do
   m->variance = static_cast<float>(variance);
 }
 
+// True when the straight line from the robot to node k crosses a node that is no ground (a
+// wall, a box): the node lies behind it, in its shadow, not in the sensor's blind disc.
+bool behindObstacle(const TriGrid& grid, const std::vector<NodeModel>& models, int k) {
+  const Eigen::Vector2d target = grid.centroid(k);
+  const int steps = static_cast<int>(std::ceil(4.0 * target.norm() / grid.resolution()));
+  for (int i = 1; i < steps; ++i) {
+    const Eigen::Vector2d q = target * (static_cast<double>(i) / steps);
+    const int node = grid.nodeAt(q.x(), q.y());
+    if (node >= 0 && node != k && models[node].label == TravLabel::kNonGround) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 double fillBlindDisc(const TriGrid& grid, const TraversabilityConfig& config,
@@ -77,6 +90,7 @@ double fillBlindDisc(const TriGrid& grid, const TraversabilityConfig& config,
   const double variance = sq / count + config.plane_distance * config.plane_distance;
   for (NodeModel& m : *models) {
     if (!isTarget(m) || m.position.head<2>().norm() >= r_min) continue;
+    if (behindObstacle(grid, *models, static_cast<int>(&m - models->data()))) continue;
     const double z = abc.x() * m.position.x() + abc.y() * m.position.y() + abc.z();
     setInferredGround(&m, normal, z, variance);
   }

@@ -98,7 +98,8 @@ void fitNodePlanes(const BucketedScan& scan, const TriGrid& grid,
                    const TraversabilityConfig& config, std::vector<NodeModel>* models);
 
 /// Fills the sensor's blind disc under the robot with the plane through the ground ring around
-/// it. Returns the blind radius found (0 when none was filled).
+/// it, but not behind an obstacle inside the disc. Returns the blind radius found (0 when none
+/// was filled).
 double fillBlindDisc(const TriGrid& grid, const TraversabilityConfig& config,
                      std::vector<NodeModel>* models);
 
