@@ -29,9 +29,9 @@ BagScanSource::BagScanSource(const std::string& path, const std::string& topic) 
   if (found_type.empty() || found_type != kCloudType) {
     std::string topics;
     for (const auto& t : pointCloudTopics()) topics += "\n  " + t;
-    const std::string what = found_type.empty() ? "has no topic " + topic
-                                                : "topic " + topic + " is " + found_type +
-                                                      ", not " + kCloudType;
+    const std::string what = found_type.empty()
+                                 ? "has no topic " + topic
+                                 : "topic " + topic + " is " + found_type + ", not " + kCloudType;
     throw std::runtime_error(path + ": " + what + "; PointCloud2 topics in the bag:" +
                              (topics.empty() ? std::string(" none") : topics));
   }

@@ -104,8 +104,8 @@ CloudConversionResult fromRosCloud(const sensor_msgs::PointCloud2& msg, PointClo
     }
   }
   for (const auto* f : {fx, fy, fz, fi}) {
-    if (f && (datatypeSize(f->datatype) == 0 || f->offset + datatypeSize(f->datatype) >
-                                                    msg.point_step)) {
+    if (f && (datatypeSize(f->datatype) == 0 ||
+              f->offset + datatypeSize(f->datatype) > msg.point_step)) {
       return reject(result, "field " + f->name + " does not fit in point_step " +
                                 std::to_string(msg.point_step));
     }
@@ -147,10 +147,9 @@ sensor_msgs::PointCloud2 toRosCloud(const PointCloud& cloud, const std::string& 
   msg.header.frame_id = frame_id;
   msg.header.stamp.fromSec(stamp);
   sensor_msgs::PointCloud2Modifier modifier(msg);
-  modifier.setPointCloud2Fields(4, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1,
-                                sensor_msgs::PointField::FLOAT32, "z", 1,
-                                sensor_msgs::PointField::FLOAT32, "intensity", 1,
-                                sensor_msgs::PointField::FLOAT32);
+  modifier.setPointCloud2Fields(
+      4, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32, "z", 1,
+      sensor_msgs::PointField::FLOAT32, "intensity", 1, sensor_msgs::PointField::FLOAT32);
   modifier.resize(cloud.size());
   sensor_msgs::PointCloud2Iterator<float> x(msg, "x"), y(msg, "y"), z(msg, "z"),
       intensity(msg, "intensity");

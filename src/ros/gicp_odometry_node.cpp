@@ -146,10 +146,11 @@ void GicpOdometryNode::processCloud(const sensor_msgs::PointCloud2::ConstPtr& ms
   }
   last_stamp_ = stamp;
   ++scans_processed_;
-  publish(result);
+  publish(result, T_base_sensor.translation());
 }
 
-void GicpOdometryNode::publish(const OdometryResult& result) {
+void GicpOdometryNode::publish(const OdometryResult& result,
+                               const Eigen::Vector3d& sensor_in_base) {
   const FramesConfig& f = config_.frames;
   odom_pub_.publish(toOdometryMsg(result.T_odom_base, f.odom_frame, f.base_frame, result.stamp));
   if (publish_tf_) {
@@ -159,8 +160,8 @@ void GicpOdometryNode::publish(const OdometryResult& result) {
   if (!result.is_keyframe || !result.keyframe_cloud) return;
   // The odometry hands the keyframe cloud at odometry.keyframe_cloud_voxel_m.
   keyframe_pub_.publish(toKeyframeMsg(result.keyframe_id, result.stamp, result.T_odom_base,
-                                      result.information, *result.keyframe_cloud, f.odom_frame,
-                                      f.base_frame));
+                                      result.information, *result.keyframe_cloud, sensor_in_base,
+                                      f.odom_frame, f.base_frame));
 }
 
 }  // namespace tacs

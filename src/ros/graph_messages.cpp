@@ -31,6 +31,7 @@ Eigen::Vector3d fromPoint(const geometry_msgs::Point& p) { return {p.x, p.y, p.z
 
 tacs_graphs::Keyframe toKeyframeMsg(uint32_t id, double stamp, const Pose3& T_odom_base,
                                     const Matrix6d& information, const PointCloud& cloud,
+                                    const Eigen::Vector3d& sensor_in_base,
                                     const std::string& odom_frame, const std::string& base_frame) {
   tacs_graphs::Keyframe msg;
   msg.header.stamp.fromSec(stamp);
@@ -39,6 +40,9 @@ tacs_graphs::Keyframe toKeyframeMsg(uint32_t id, double stamp, const Pose3& T_od
   msg.odom_pose = toPoseMsg(T_odom_base);
   toMatrixArray(information, &msg.odom_information);
   msg.cloud = toRosCloud(cloud, base_frame, stamp);
+  msg.sensor_origin.x = sensor_in_base.x();
+  msg.sensor_origin.y = sensor_in_base.y();
+  msg.sensor_origin.z = sensor_in_base.z();
   return msg;
 }
 

@@ -11,12 +11,17 @@ KeyframeInput fromKeyframeMsg(const tacs_graphs::Keyframe& msg) {
   in.stamp = msg.header.stamp.toSec();
   in.T_odom_base = fromPoseMsg(msg.odom_pose);
   in.information = fromMatrixArray(msg.odom_information);
+  in.sensor_in_base = {msg.sensor_origin.x, msg.sensor_origin.y, msg.sensor_origin.z};
   if (!in.T_odom_base.matrix().allFinite()) {
     in.error = "non-finite keyframe pose";
     return in;
   }
   if (!in.information.allFinite()) {
     in.error = "non-finite keyframe information";
+    return in;
+  }
+  if (!in.sensor_in_base.allFinite()) {
+    in.error = "non-finite keyframe sensor origin";
     return in;
   }
   in.cloud.reset(new PointCloud);

@@ -12,8 +12,9 @@ Pose3 fromPoseMsg(const geometry_msgs::Pose& msg) {
   return pose;
 }
 
-geometry_msgs::TransformStamped toTransformMsg(const Pose3& T_parent_child, const std::string& parent,
-                                               const std::string& child, double stamp) {
+geometry_msgs::TransformStamped toTransformMsg(const Pose3& T_parent_child,
+                                               const std::string& parent, const std::string& child,
+                                               double stamp) {
   geometry_msgs::TransformStamped t = tf2::eigenToTransform(T_parent_child);
   t.header.frame_id = parent;
   t.header.stamp.fromSec(stamp);

@@ -22,9 +22,8 @@ void WallExtractionNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr&
     warnings_.warn("keyframe", WarnOnce::reasonKey(kf.error), kf.error + ", skipped");
     return;
   }
-  // Seen from the sensor: the low-surface test measures heights and elevations from there.
-  const WallExtractionResult result =
-      extractor_.extract(*kf.cloud, config_.frames.baseToSensor().translation());
+  // Seen from the sensor: the low-surface and seen-over tests measure rays from there.
+  const WallExtractionResult result = extractor_.extract(*kf.cloud, kf.sensor_in_base);
   ++processed_;
   tacs_graphs::WallObservations out;
   out.header.stamp = msg->header.stamp;

@@ -1,9 +1,12 @@
-// Test node of bad_messages.test: feeds gicp_odometry good and bad clouds in turn.
+// Test node of bad_messages.test: feeds gicp_odometry good and bad clouds in turn, in a sensor
+// frame whose extrinsic comes from TF.
+#include <geometry_msgs/TransformStamped.h>
 #include <gtest/gtest.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <tacs_graphs/Keyframe.h>
+#include <tf2_ros/static_transform_broadcaster.h>
 
 #include <chrono>
 #include <functional>
@@ -16,14 +19,29 @@
 namespace tacs {
 namespace {
 
+constexpr const char* kSensorFrame = "velodyne";
+const Eigen::Vector3d kSensorInBase(0.1, 0.0, 0.6);
+
 class BadMessagesTest : public ::testing::Test {
  protected:
   void SetUp() override {
     pub_ = nh_.advertise<sensor_msgs::PointCloud2>("/bad_messages/points", 10);
     odom_sub_ =
         nh_.subscribe<nav_msgs::Odometry>("/tacs/odom", 100, [this](const auto&) { ++odometry_; });
-    keyframe_sub_ = nh_.subscribe<tacs_graphs::Keyframe>("/tacs/keyframe", 100,
-                                                         [this](const auto&) { ++keyframes_; });
+    keyframe_sub_ = nh_.subscribe<tacs_graphs::Keyframe>(
+        "/tacs/keyframe", 100, [this](const tacs_graphs::Keyframe::ConstPtr& kf) {
+          ++keyframes_;
+          sensor_origin_ = {kf->sensor_origin.x, kf->sensor_origin.y, kf->sensor_origin.z};
+        });
+    geometry_msgs::TransformStamped extrinsic;
+    extrinsic.header.stamp = ros::Time::now();
+    extrinsic.header.frame_id = "base_link";
+    extrinsic.child_frame_id = kSensorFrame;
+    extrinsic.transform.translation.x = kSensorInBase.x();
+    extrinsic.transform.translation.y = kSensorInBase.y();
+    extrinsic.transform.translation.z = kSensorInBase.z();
+    extrinsic.transform.rotation.w = 1.0;
+    tf_.sendTransform(extrinsic);
     ASSERT_TRUE(waitFor([this] {
       return pub_.getNumSubscribers() > 0 && odom_sub_.getNumPublishers() > 0 &&
              keyframe_sub_.getNumPublishers() > 0;
@@ -43,7 +61,7 @@ class BadMessagesTest : public ::testing::Test {
 
   sensor_msgs::PointCloud2 goodScan(int i, double stamp) {
     const Pose3 T = poseFromXyzRpy(3.0 + 0.05 * i, 3.0, 0.5, 0.0, 0.0, 0.0);
-    return toRosCloud(test::renderScan(room_, T, 7 + i), "base_link", stamp);
+    return toRosCloud(test::renderScan(room_, T, 7 + i), kSensorFrame, stamp);
   }
 
   // Publishes a good scan and waits for its odometry.
@@ -56,16 +74,18 @@ class BadMessagesTest : public ::testing::Test {
   ros::NodeHandle nh_;
   ros::Publisher pub_;
   ros::Subscriber odom_sub_, keyframe_sub_;
+  tf2_ros::StaticTransformBroadcaster tf_;
   test::BoxRoom room_;
   int odometry_ = 0;
   int keyframes_ = 0;
+  Eigen::Vector3d sensor_origin_ = Eigen::Vector3d::Constant(-1.0);
 };
 
 TEST_F(BadMessagesTest, BadCloudsAreSkippedAndOdometryGoesOn) {
   double t = 100.0;
   for (int i = 0; i < 3; ++i, t += 0.1) publishGood(i, t);
 
-  pub_.publish(toRosCloud(PointCloud(), "base_link", t));  // empty
+  pub_.publish(toRosCloud(PointCloud(), kSensorFrame, t));  // empty
   t += 0.1;
   publishGood(3, t);
   t += 0.1;
@@ -73,7 +93,7 @@ TEST_F(BadMessagesTest, BadCloudsAreSkippedAndOdometryGoesOn) {
   PointCloud nans;
   const float nan = std::numeric_limits<float>::quiet_NaN();
   for (int k = 0; k < 500; ++k) nans.push_back(pcl::PointXYZI(nan, nan, nan, 0.0f));
-  pub_.publish(toRosCloud(nans, "base_link", t));
+  pub_.publish(toRosCloud(nans, kSensorFrame, t));
   t += 0.1;
   publishGood(4, t);
   t += 0.1;
@@ -90,9 +110,11 @@ TEST_F(BadMessagesTest, BadCloudsAreSkippedAndOdometryGoesOn) {
   t += 0.1;
   publishGood(7, t);
 
-  // Every good scan and nothing else produced odometry, and the first scan was a keyframe.
+  // Every good scan and nothing else produced odometry, and the first scan was a keyframe; a
+  // keyframe carries the sensor origin the odometry took from TF.
   EXPECT_EQ(odometry_, 8);
   EXPECT_TRUE(waitFor([this] { return keyframes_ >= 1; }));
+  EXPECT_TRUE(sensor_origin_.isApprox(kSensorInBase, 1e-6)) << sensor_origin_.transpose();
 }
 
 }  // namespace

@@ -72,7 +72,8 @@ TEST(GraphMessages, KeyframeRoundTripKeepsPoseInformationAndCloud) {
   Eigen::Matrix<double, 6, 6> info = Eigen::Matrix<double, 6, 6>::Identity() * 100.0;
   info(0, 5) = 7.0;
   const Pose3 pose = poseFromXyzRpy(1, 2, 0.1, 0.0, 0.02, 1.2);
-  const auto msg = toKeyframeMsg(12, 42.5, pose, info, cloud, "odom", "base_link");
+  const auto msg =
+      toKeyframeMsg(12, 42.5, pose, info, cloud, Eigen::Vector3d(0.1, 0, 0.6), "odom", "base_link");
   EXPECT_EQ(msg.header.frame_id, "odom");
   EXPECT_EQ(msg.cloud.header.frame_id, "base_link");
   const KeyframeInput in = fromKeyframeMsg(msg);
@@ -83,21 +84,27 @@ TEST(GraphMessages, KeyframeRoundTripKeepsPoseInformationAndCloud) {
   EXPECT_TRUE(in.information.isApprox(info));
   ASSERT_EQ(in.cloud->size(), 5u);
   EXPECT_FLOAT_EQ(in.cloud->points[4].x, 4.0f);
+  EXPECT_TRUE(in.sensor_in_base.isApprox(Eigen::Vector3d(0.1, 0, 0.6)));
 }
 
 TEST(GraphMessages, MalformedKeyframeIsRejectedWithReason) {
   auto msg = toKeyframeMsg(1, 1.0, Pose3::Identity(), Eigen::Matrix<double, 6, 6>::Zero(),
-                           PointCloud(), "odom", "base_link");
+                           PointCloud(), Eigen::Vector3d::Zero(), "odom", "base_link");
   msg.cloud.fields.clear();
   KeyframeInput in = fromKeyframeMsg(msg);
   EXPECT_FALSE(in.ok);
   EXPECT_NE(in.error.find("x/y/z"), std::string::npos) << in.error;
   msg = toKeyframeMsg(1, 1.0, Pose3::Identity(), Eigen::Matrix<double, 6, 6>::Zero(), PointCloud(),
-                      "odom", "base_link");
+                      Eigen::Vector3d::Zero(), "odom", "base_link");
   msg.odom_pose.position.x = std::nan("");
   in = fromKeyframeMsg(msg);
   EXPECT_FALSE(in.ok);
   EXPECT_NE(in.error.find("pose"), std::string::npos) << in.error;
+  msg.odom_pose.position.x = 0.0;
+  msg.sensor_origin.z = std::numeric_limits<double>::infinity();
+  in = fromKeyframeMsg(msg);
+  EXPECT_FALSE(in.ok);
+  EXPECT_NE(in.error.find("sensor origin"), std::string::npos) << in.error;
 }
 
 TEST(GraphMessages, TraversableGraphRoundTrip) {

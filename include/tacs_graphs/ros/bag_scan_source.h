@@ -19,8 +19,8 @@ class BagScanSource {
   struct Scan {
     double stamp = 0.0;
     std::string frame_id;
-    PointCloud cloud;                   // sensor frame
-    CloudConversionResult conversion;   // conversion.ok == false: the message was unusable
+    PointCloud cloud;                  // sensor frame
+    CloudConversionResult conversion;  // conversion.ok == false: the message was unusable
   };
 
   /// Opens `path` and selects the PointCloud2 `topic`. Throws std::runtime_error with a message a

@@ -50,7 +50,7 @@ class GicpOdometryNode {
   void processCloud(const sensor_msgs::PointCloud2::ConstPtr& msg);
   /// T_base_sensor for `sensor_frame`: TF first, then frames.base_to_sensor (cached per frame).
   Pose3 sensorExtrinsic(const std::string& sensor_frame);
-  void publish(const OdometryResult& result);
+  void publish(const OdometryResult& result, const Eigen::Vector3d& sensor_in_base);
 
   PipelineConfig config_;
   bool publish_tf_ = true;

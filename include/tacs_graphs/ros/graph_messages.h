@@ -26,9 +26,10 @@ namespace tacs {
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
-/// A keyframe as the odometry publishes it; `cloud` is in the base frame.
+/// A keyframe as the odometry publishes it; `cloud` and `sensor_in_base` are in the base frame.
 tacs_graphs::Keyframe toKeyframeMsg(uint32_t id, double stamp, const Pose3& T_odom_base,
                                     const Matrix6d& information, const PointCloud& cloud,
+                                    const Eigen::Vector3d& sensor_in_base,
                                     const std::string& odom_frame, const std::string& base_frame);
 
 tacs_graphs::WallObservation toWallObservationMsg(const WallSegment& wall);

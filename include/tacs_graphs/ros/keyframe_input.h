@@ -17,7 +17,8 @@ struct KeyframeInput {
   double stamp = 0.0;
   Pose3 T_odom_base = Pose3::Identity();
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
-  PointCloud::Ptr cloud;  // base frame
+  PointCloud::Ptr cloud;                                     // base frame
+  Eigen::Vector3d sensor_in_base = Eigen::Vector3d::Zero();  // ray origin of the cloud
 };
 
 KeyframeInput fromKeyframeMsg(const tacs_graphs::Keyframe& msg);

@@ -15,8 +15,9 @@ namespace tacs {
 geometry_msgs::Pose toPoseMsg(const Pose3& pose);
 Pose3 fromPoseMsg(const geometry_msgs::Pose& msg);
 
-geometry_msgs::TransformStamped toTransformMsg(const Pose3& T_parent_child, const std::string& parent,
-                                               const std::string& child, double stamp);
+geometry_msgs::TransformStamped toTransformMsg(const Pose3& T_parent_child,
+                                               const std::string& parent, const std::string& child,
+                                               double stamp);
 
 nav_msgs::Odometry toOdometryMsg(const Pose3& T_parent_child, const std::string& parent,
                                  const std::string& child, double stamp);
