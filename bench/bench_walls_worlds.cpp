@@ -6,16 +6,18 @@
 // Per world a keyframe is taken every 0.5 m of ground-truth path; its scan goes to the levelled
 // base frame, is voxelised at 0.1 m and given to WallExtractor; the walls are moved to the world
 // frame and fed to WallMap (associate + mergeDuplicates at every keyframe, as the backend does).
-// Ground truth: each wall box of the world has two long faces; the faces of full-height walls
-// (z_max >= 1.5 m) longer than 1.5 m count. At a keyframe a face is visible when it lies within
-// 10 m of the robot and at least 50 points of the raw scan lie within 5 cm of it, spread over
-// at least 0.6 m along it (the extractor's shortest wall; occluded faces and faces of which only a
-// door jamb is seen do not count). A detection is a true positive when it matches a visible face:
-// normals within 10 deg (same side), plane distance at the detection's midpoint within 0.15 m,
-// overlapping extents. P and R are micro-averaged over the keyframes; "P <= 10 m" counts only
-// detections within the visible range, where the ground truth is defined; "P any" also accepts a
-// match with any vertical surface of the world (half walls, rails, pit walls, box sides, faces out
-// of range or barely seen). After the run, landmarks are counted against the faces ever visible
+// Ground truth: each wall box of the world has two long faces, cut where another full-height wall
+// stands against them (a face running behind a partition is a wall in each room); the faces of
+// full-height walls (z_max >= 1.5 m) longer than 1.5 m count, pieces shorter than 0.6 m do not. At
+// a keyframe a face is visible when it lies within 10 m of the robot and at least 50 points of the
+// raw scan lie within 5 cm of it, spread over at least 0.6 m along it (the extractor's shortest
+// wall; occluded faces and faces of which only a door jamb is seen do not count). A detection is a
+// true positive when it matches a visible face: normals within 10 deg (same side), plane distance
+// at the detection's midpoint within 0.15 m, overlapping extents. P and R are micro-averaged over
+// the keyframes; "P <= 10 m" counts only detections within the visible range, where the ground
+// truth is defined; "P any" also accepts a match with any vertical surface of the world (half
+// walls, rails, pit walls, box sides, faces out of range or barely seen). After the run, landmarks
+// are counted against the faces ever visible
 // ("on those faces": landmarks that match one of them; the others sit on furniture, half walls,
 // ...); "held twice" counts faces matched by two or more landmarks, "stray" landmarks that match
 // no surface of the world.
@@ -58,22 +60,72 @@ struct Face {
   double length() const { return (b - a).norm(); }
 };
 
-std::vector<Face> facesOf(const tacs::sim::World& world) {
-  std::vector<Face> faces;
-  for (const auto& w : world.walls) {
+// Interval [t0, t1] of the line a + t dir inside the footprint of wall `w`; empty (t0 >= t1)
+// when the line misses it.
+std::pair<double, double> coveredBy(const Eigen::Vector2d& a, const Eigen::Vector2d& dir,
+                                    const tacs::sim::Wall& w) {
+  const Eigen::Vector2d u = (w.to - w.from).normalized(), v(-u.y(), u.x());
+  double t0 = -1e9, t1 = 1e9;
+  // p(t) = a + t dir must satisfy 0 <= u.(p - from) <= |to - from| and |v.(p - from)| <= th / 2:
+  // each bound is linear in t.
+  auto bound = [&](const Eigen::Vector2d& axis, double lo, double hi) {
+    const double c = axis.dot(a - w.from), k = axis.dot(dir);
+    if (std::abs(k) < 1e-9) {
+      if (c < lo || c > hi) t0 = t1 = 0.0;
+      return;
+    }
+    const double ta = (lo - c) / k, tb = (hi - c) / k;
+    t0 = std::max(t0, std::min(ta, tb));
+    t1 = std::min(t1, std::max(ta, tb));
+  };
+  bound(u, 0.0, (w.to - w.from).norm());
+  bound(v, -0.5 * w.thickness, 0.5 * w.thickness);
+  return {t0, t1};
+}
+
+// The long faces of the wall boxes, cut where another full-height wall stands against them: a
+// face running behind a partition is two walls to anyone in front of it (two rooms).
+void appendWallFaces(const tacs::sim::World& world, std::vector<Face>* faces) {
+  for (size_t i = 0; i < world.walls.size(); ++i) {
+    const auto& w = world.walls[i];
     const Eigen::Vector2d u = (w.to - w.from).normalized();
     for (double side : {1.0, -1.0}) {
-      Face f;
-      f.n = side * Eigen::Vector2d(-u.y(), u.x());
-      f.a = w.from + 0.5 * w.thickness * f.n;
-      f.b = w.to + 0.5 * w.thickness * f.n;
-      f.d = -f.n.dot(f.a);
-      f.z_min = w.z_min;
-      f.z_max = w.z_max;
-      f.ground_truth = w.z_max >= kMinWallTop && f.length() > kMinFaceLength;
-      faces.push_back(f);
+      const Eigen::Vector2d n = side * Eigen::Vector2d(-u.y(), u.x());
+      const Eigen::Vector2d a = w.from + 0.5 * w.thickness * n;
+      const double length = (w.to - w.from).norm();
+      std::vector<std::pair<double, double>> cuts;
+      for (size_t j = 0; j < world.walls.size(); ++j) {
+        if (j == i || world.walls[j].z_max < kMinWallTop) continue;
+        // Probed 2 cm in front of the face: a wall standing against it reaches there.
+        const auto [t0, t1] = coveredBy(a + 0.02 * n, u, world.walls[j]);
+        if (t1 > t0 && t1 > 0.0 && t0 < length) cuts.emplace_back(t0, t1);
+      }
+      std::sort(cuts.begin(), cuts.end());
+      double start = 0.0;
+      cuts.emplace_back(length, length);
+      for (const auto& [t0, t1] : cuts) {
+        if (t0 > start) {
+          Face f;
+          f.n = n;
+          f.a = a + start * u;
+          f.b = a + std::min(t0, length) * u;
+          f.d = -f.n.dot(f.a);
+          f.z_min = w.z_min;
+          f.z_max = w.z_max;
+          // The wall counts by its length; a piece of it too short to be seen does not.
+          f.ground_truth =
+              w.z_max >= kMinWallTop && length > kMinFaceLength && f.length() >= kMinFaceSpan;
+          faces->push_back(f);
+        }
+        start = std::max(start, t1);
+      }
     }
   }
+}
+
+std::vector<Face> facesOf(const tacs::sim::World& world) {
+  std::vector<Face> faces;
+  appendWallFaces(world, &faces);
   // The four sides of every box (furniture, cabinets, pillars): surfaces, never ground truth.
   for (const auto& box : world.boxes) {
     const double yaw = box.yaw_deg * M_PI / 180.0;
