@@ -295,6 +295,19 @@ WorldScore runWorld(const std::string& path, const tacs::bench::WorldsArgs& args
                   lm.endpoints[1].y());
     }
     score.stray += !any;
+    if (args.verbose && any && on_faces == 0) {
+      Miss kind = kNothing;
+      for (size_t k = 0; k < faces.size(); ++k) {
+        if (matches(lm.normal, lm.endpoints, faces[k])) {
+          kind = std::min(kind, missKind(faces[k], ever_visible, k, true));
+        }
+      }
+      std::printf(
+          "|   landmark %u on no wall: %s surface, (%.2f, %.2f)-(%.2f, %.2f), z %.2f-%.2f, seen %u "
+          "times |\n",
+          id, kMissNames[kind], lm.endpoints[0].x(), lm.endpoints[0].y(), lm.endpoints[1].x(),
+          lm.endpoints[1].y(), lm.z_min, lm.z_max, lm.observations);
+    }
     score.on_faces += on_faces > 0;
     if (!any && args.verbose) {
       std::printf(
