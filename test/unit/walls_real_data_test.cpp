@@ -1,28 +1,16 @@
 // Wall extraction on a real indoor scan (PCL tutorial room, see shared data PROVENANCE.md).
 #include <gtest/gtest.h>
-#include <pcl/io/pcd_io.h>
 
 #include <cmath>
-#include <filesystem>
 
-#include "common/test_paths.h"
+#include "common/room_scans.h"
 #include "tacs_graphs/walls/dominant_axes.h"
 #include "tacs_graphs/walls/wall_extractor.h"
 
 namespace tacs {
 namespace {
 
-PointCloud loadRoomScan(const std::string& name) {
-  const std::string path = test::sharedDataDir() + "/pcl_room_scans/" + name;
-  pcl::PointCloud<pcl::PointXYZ> xyz;
-  if (!std::filesystem::exists(path) || pcl::io::loadPCDFile(path, xyz) != 0) {
-    ADD_FAILURE() << "cannot read " << path;
-    return {};
-  }
-  PointCloud cloud;
-  pcl::copyPointCloud(xyz, cloud);
-  return cloud;
-}
+using test::loadRoomScan;
 
 TEST(WallsRealData, RoomScanMainWallsAreFoundAndPerpendicular) {
   const PointCloud cloud = loadRoomScan("room_scan1.pcd");
