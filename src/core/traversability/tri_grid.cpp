@@ -191,7 +191,6 @@ void fitNode(const BucketedScan& scan, const TraversabilityConfig& c, NodeModel*
     }
     thickness_var = fit.normal.dot(fit.cov * fit.normal);
     line_penalty = c.plane_distance * c.plane_distance;  // weaker evidence than a true plane
-    m->single_line = true;
   }
   m->has_plane = true;
   m->normal = fit.normal;

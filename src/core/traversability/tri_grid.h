@@ -43,7 +43,6 @@ struct NodeModel {
   TravLabel label = TravLabel::kUnknown;
   bool has_plane = false;  // normal/d are meaningful (fitted or inferred)
   bool inferred = false;
-  bool single_line = false;  // the plane is the most level one through a single scan line
   float variance = 0.0f;
   uint32_t begin = 0, count = 0;  // range in the node-sorted point order
   float clearance = 0.0f;         // from the triangle (nearest point of it) [m]
