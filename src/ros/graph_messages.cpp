@@ -6,14 +6,6 @@
 namespace tacs {
 namespace {
 
-geometry_msgs::Point toPoint(const Eigen::Vector3d& p) {
-  geometry_msgs::Point out;
-  out.x = p.x();
-  out.y = p.y();
-  out.z = p.z();
-  return out;
-}
-
 geometry_msgs::Point toPoint2(const Eigen::Vector2d& p) { return toPoint({p.x(), p.y(), 0.0}); }
 
 geometry_msgs::Vector3 toVector(const Eigen::Vector3d& v) {
@@ -25,7 +17,6 @@ geometry_msgs::Vector3 toVector(const Eigen::Vector3d& v) {
 }
 
 Eigen::Vector3d fromVector(const geometry_msgs::Vector3& v) { return {v.x, v.y, v.z}; }
-Eigen::Vector3d fromPoint(const geometry_msgs::Point& p) { return {p.x, p.y, p.z}; }
 
 }  // namespace
 
@@ -40,9 +31,7 @@ tacs_graphs::Keyframe toKeyframeMsg(uint32_t id, double stamp, const Pose3& T_od
   msg.odom_pose = toPoseMsg(T_odom_base);
   toMatrixArray(information, &msg.odom_information);
   msg.cloud = toRosCloud(cloud, base_frame, stamp);
-  msg.sensor_origin.x = sensor_in_base.x();
-  msg.sensor_origin.y = sensor_in_base.y();
-  msg.sensor_origin.z = sensor_in_base.z();
+  msg.sensor_origin = toPoint(sensor_in_base);
   return msg;
 }
 

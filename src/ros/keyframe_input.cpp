@@ -11,7 +11,7 @@ KeyframeInput fromKeyframeMsg(const tacs_graphs::Keyframe& msg) {
   in.stamp = msg.header.stamp.toSec();
   in.T_odom_base = fromPoseMsg(msg.odom_pose);
   in.information = fromMatrixArray(msg.odom_information);
-  in.sensor_in_base = {msg.sensor_origin.x, msg.sensor_origin.y, msg.sensor_origin.z};
+  in.sensor_in_base = fromPoint(msg.sensor_origin);
   if (!in.T_odom_base.matrix().allFinite()) {
     in.error = "non-finite keyframe pose";
     return in;

@@ -4,6 +4,16 @@
 
 namespace tacs {
 
+geometry_msgs::Point toPoint(const Eigen::Vector3d& p) {
+  geometry_msgs::Point out;
+  out.x = p.x();
+  out.y = p.y();
+  out.z = p.z();
+  return out;
+}
+
+Eigen::Vector3d fromPoint(const geometry_msgs::Point& p) { return {p.x, p.y, p.z}; }
+
 geometry_msgs::Pose toPoseMsg(const Pose3& pose) { return tf2::toMsg(pose); }
 
 Pose3 fromPoseMsg(const geometry_msgs::Pose& msg) {

@@ -1,6 +1,7 @@
 // Core types <-> tacs_graphs and standard messages.
 #pragma once
 
+#include <geometry_msgs/Point.h>
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -11,6 +12,9 @@
 #include "tacs_graphs/common/types.h"
 
 namespace tacs {
+
+geometry_msgs::Point toPoint(const Eigen::Vector3d& p);
+Eigen::Vector3d fromPoint(const geometry_msgs::Point& p);
 
 geometry_msgs::Pose toPoseMsg(const Pose3& pose);
 Pose3 fromPoseMsg(const geometry_msgs::Pose& msg);
