@@ -1,6 +1,7 @@
 // Wall extraction on synthetic rooms: planes, extents, gap splitting, horizontal planes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/synthetic_walls.h"
@@ -179,9 +180,53 @@ TEST(WallExtraction, ACabinetInFrontOfAWallIsSeenOver) {
   EXPECT_TRUE(matching(result.walls, {-1, 0, 0}, 4.5).empty());
   EXPECT_EQ(matching(result.walls, {-1, 0, 0}, 5.0).size(), 1u);  // the wall behind stays
   EXPECT_EQ(matching(result.walls, {1, 0, 0}, 3.0).size(), 1u);
-  // Without the test the cabinet is a wall.
+  // The wall behind spans it, so the on-wall test drops it as well; without both it is a wall.
   cfg.seen_over_min_points = 0;
+  EXPECT_TRUE(matching(WallExtractor(cfg).extract(scene.cloud).walls, {-1, 0, 0}, 4.5).empty());
+  cfg.on_wall_max_depth = 0.0;
   EXPECT_EQ(matching(WallExtractor(cfg).extract(scene.cloud).walls, {-1, 0, 0}, 4.5).size(), 1u);
+}
+
+TEST(WallExtraction, AClosedDoorOnAWallIsNoWall) {
+  // The wall x = 5 with a 1.1 m door opening (y 0.5..1.6) under a lintel, closed by a door leaf
+  // 8 cm in front of the wall: the leaf is flanked by the wall's pieces (and spanned by the
+  // plane's run over the lintel), so only the wall is reported, at its own plane.
+  test::SyntheticScene scene;
+  scene.wall({-3, -2}, {5, -2}, -0.8, 1.8);
+  scene.wall({5, 4}, {-3, 4}, -0.8, 1.8);
+  scene.wall({-3, 4}, {-3, -2}, -0.8, 1.8);
+  scene.wall({5, -2}, {5, 0.5}, -0.8, 1.8);
+  scene.wall({5, 1.6}, {5, 4}, -0.8, 1.8);
+  scene.wall({5, 0.5}, {5, 1.6}, 1.3, 1.8);  // lintel
+  scene.slab(-3, 5, -2, 4, -0.8);
+  scene.slab(-3, 5, -2, 4, 1.8);
+  scene.wall({4.92, 0.5}, {4.92, 1.6}, -0.8, 1.3);  // door leaf
+  WallExtractionConfig cfg;
+  const auto walls = WallExtractor(cfg).extract(scene.cloud).walls;
+  EXPECT_EQ(matching(walls, {-1, 0, 0}, 5.0).size(), 1u);
+  for (const auto& w : walls) {
+    const bool leaf = w.normal.x() < -0.99 && std::abs(w.d - 4.92) < 0.03;
+    EXPECT_FALSE(leaf) << "door leaf reported at d = " << w.d;
+  }
+  // Switched off, the leaf is a wall segment of its own.
+  cfg.on_wall_max_depth = 0.0;
+  const auto off = WallExtractor(cfg).extract(scene.cloud).walls;
+  const bool leaf_reported = std::any_of(off.begin(), off.end(), [](const WallSegment& w) {
+    return w.normal.x() < -0.99 && std::abs(w.d - 4.92) < 0.03;
+  });
+  EXPECT_TRUE(leaf_reported);
+}
+
+TEST(WallExtraction, AWallBetweenTwoRecessedDoorsStays) {
+  // Wall x = 4.7 (y 0..3) between two doors recessed 0.3 m (x = 5, y -1..0 and 3..4): flanked at
+  // both ends by surfaces behind it that are shorter together than it is, so it is a wall.
+  test::SyntheticScene scene;
+  scene.wall({4.7, 0}, {4.7, 3}, -0.8, 1.8);
+  scene.wall({5, -1}, {5, 0}, -0.8, 1.8);
+  scene.wall({5, 3}, {5, 4}, -0.8, 1.8);
+  scene.slab(-1, 5, -1, 4, -0.8);
+  const auto walls = WallExtractor(WallExtractionConfig{}).extract(scene.cloud).walls;
+  EXPECT_EQ(matching(walls, {-1, 0, 0}, 4.7).size(), 1u);
 }
 
 TEST(WallExtraction, AHalfWallInLineWithAWallIsCutOffIt) {

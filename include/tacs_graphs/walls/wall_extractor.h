@@ -73,6 +73,10 @@ struct WallExtractionConfig {
   double seen_over_depth = 0.3;
   /// ...on rays at least this far above the stretch's top where they cross it (m).
   double seen_over_clearance = 0.1;
+  /// A segment in front of same-facing walls of the same scan, more than distance_threshold and
+  /// at most this far in front of their planes, that spans it or flanks both its ends, is a door,
+  /// cabinet or panel on that wall and not reported (m); 0 = off.
+  double on_wall_max_depth = 0.6;
   /// Horizontal planes with fewer inliers are not reported (their points are still removed).
   int min_horizontal_inliers = 200;
   /// Seed of the random sampling.
@@ -104,6 +108,7 @@ struct WallExtractionConfig {
     v("seen_over_min_points", seen_over_min_points);
     v("seen_over_depth", seen_over_depth);
     v("seen_over_clearance", seen_over_clearance);
+    v("on_wall_max_depth", on_wall_max_depth);
     v("min_horizontal_inliers", min_horizontal_inliers);
     v("seed", seed);
   }

@@ -43,6 +43,7 @@ void WallExtractionConfig::validate() const {
   requireConfig(seen_over_min_points >= 0, p + "seen_over_min_points", "must be >= 0 (0 = off)");
   requireConfig(seen_over_depth >= 0.0, p + "seen_over_depth", "must be >= 0");
   requireConfig(seen_over_clearance >= 0.0, p + "seen_over_clearance", "must be >= 0");
+  requireConfig(on_wall_max_depth >= 0.0, p + "on_wall_max_depth", "must be >= 0 (0 = off)");
   requireConfig(min_horizontal_inliers >= 3, p + "min_horizontal_inliers", "must be >= 3");
 }
 
@@ -553,6 +554,47 @@ class PlaneSearch {
 
 bool byInliers(const WallSegment& a, const WallSegment& b) { return a.inliers > b.inliers; }
 
+// Doors, cabinets and panels on a wall: a segment with same-facing walls of the same scan a little
+// behind it (more than the inlier band, up to on_wall_max_depth) that were seen around or over it.
+// Either one of them spans it, or it is flanked at both ends (within max_gap) by walls behind it
+// at least as long together as it is: a closed door between the wall's pieces. A wall piece
+// between two recessed doors is longer than the doors and stays. Such a surface is measured
+// centimetres off the wall's plane and would pull the wall landmark and the poses tied to it.
+std::vector<WallSegment> dropSurfacesOnWalls(std::vector<WallSegment> walls,
+                                             const WallExtractionConfig& cfg) {
+  if (cfg.on_wall_max_depth <= 0.0) return walls;
+  const double min_cos = std::cos(cfg.vertical_tolerance_deg * M_PI / 180.0);
+  std::vector<char> on_wall(walls.size(), 0);
+  for (size_t i = 0; i < walls.size(); ++i) {
+    const WallSegment& a = walls[i];
+    const Eigen::Vector2d axis = wallAxis(a.normal);
+    const double a0 = axis.dot(a.endpoints[0]), a1 = axis.dot(a.endpoints[1]);
+    bool left = false, right = false;
+    double flank_length = 0.0;
+    for (size_t j = 0; j < walls.size() && !on_wall[i]; ++j) {
+      const WallSegment& b = walls[j];
+      if (j == i || a.normal.head<2>().dot(b.normal.head<2>()) < min_cos) continue;
+      const double depth = planeDistance(b.normal, b.d, a.midpoint(), 0.5 * (a.z_min + a.z_max));
+      if (depth <= cfg.distance_threshold || depth > cfg.on_wall_max_depth) continue;
+      const double b0 = axis.dot(b.endpoints[0]), b1 = axis.dot(b.endpoints[1]);
+      const double lo = std::min(b0, b1), hi = std::max(b0, b1);
+      if (lo <= a0 && hi >= a1) on_wall[i] = 1;  // spans it
+      const bool flanks_left = lo < a0 && hi >= a0 - cfg.max_gap && hi < a1;
+      const bool flanks_right = hi > a1 && lo <= a1 + cfg.max_gap && lo > a0;
+      left = left || flanks_left;
+      right = right || flanks_right;
+      if (flanks_left || flanks_right) flank_length += b.length();
+    }
+    if (left && right && flank_length >= a.length()) on_wall[i] = 1;
+  }
+  std::vector<WallSegment> kept;
+  kept.reserve(walls.size());
+  for (size_t i = 0; i < walls.size(); ++i) {
+    if (!on_wall[i]) kept.push_back(walls[i]);
+  }
+  return kept;
+}
+
 }  // namespace
 
 WallExtractor::WallExtractor(const WallExtractionConfig& config) : config_(config) {
@@ -589,6 +631,7 @@ WallExtractionResult WallExtractor::extract(const PointCloud& cloud_in_base,
     }
     search.remove(inliers);  // slanted planes and rejected fragments are explained away too
   }
+  result.walls = dropSurfacesOnWalls(std::move(result.walls), config_);
   std::stable_sort(result.walls.begin(), result.walls.end(), byInliers);
   std::stable_sort(result.horizontal.begin(), result.horizontal.end(), byInliers);
   result.time_ms = watch.elapsedMs();
