@@ -171,6 +171,40 @@ TEST(RoomsTacs, RevisitedRoomIsMergedAndReported) {
   EXPECT_EQ(a.room.keyframe_ids, (std::vector<uint32_t>{0, 1, 2, 6, 7, 8}));
 }
 
+// An L of two corridors 2.4 m wide: along x (y 0..2.4, x 0..10) and along y (x 7.6..10, y up to
+// 14). A region of the x corridor's keyframes also holds most of the y corridor (one component),
+// so no facing pair bounds 60 % of it; near the robot's path it is the x corridor.
+test::FloorPlan cornerOfTwoCorridors() {
+  test::FloorPlan p;
+  p.lo = {0.0, 0.0};
+  p.hi = {10.0, 14.0};
+  p.wall({0, 0}, {10, 0}, 1);        // south, seen from the north
+  p.wall({0, 2.4}, {7.6, 2.4}, -1);  // north of the x corridor, seen from the south
+  p.wall({10, 0}, {10, 14}, 1);      // east, seen from the west
+  p.wall({7.6, 2.4}, {7.6, 14}, 1);  // west of the y corridor, seen from the east
+  p.voids = {{{0, 2.4}, {7.6, 14}}};
+  return p;
+}
+
+TEST(RoomsTacs, ACornerRegionIsExtractedNearThePath) {
+  const std::vector<Eigen::Vector2d> path = {{1, 1.2}, {2, 1.2}, {3, 1.2}, {4, 1.2}};
+  RoomsConfig config;
+  config.tacs.path_retry_radius = 0.0;
+  RoomSegmenter off{config};
+  const Drive rejected = drive(&off, cornerOfTwoCorridors(), path);
+  EXPECT_TRUE(rejected.associations.empty());
+  ASSERT_EQ(rejected.steps.back().rejected.size(), 1u);
+
+  config.tacs.path_retry_radius = 4.0;
+  RoomSegmenter seg{config};
+  const Drive run = drive(&seg, cornerOfTwoCorridors(), path);
+  ASSERT_EQ(run.associations.size(), 1u);
+  const RoomObservation& o = run.steps.back().observations.at(0);
+  EXPECT_EQ(o.kind, RoomKind::kCorridor);
+  EXPECT_NEAR(o.center.y(), 1.2, 0.1);  // between the x corridor's walls
+  EXPECT_EQ(o.keyframe_ids, (std::vector<uint32_t>{0, 1, 2, 3}));
+}
+
 TEST(RoomsTacs, LongStaysAreReportedPeriodically) {
   RoomsConfig config;
   config.tacs.max_keyframes_per_observation = 4;

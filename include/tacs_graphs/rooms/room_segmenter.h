@@ -76,8 +76,10 @@ class RoomSegmenter {
   const RoomsConfig& config() const { return config_; }
 
  private:
+  /// `path`: the robot's positions in the region (TACS; empty for voxel clusters).
   void addRegion(std::vector<Eigen::Vector3d> points, std::vector<uint32_t> keyframe_ids,
-                 const WallMap& walls, const DominantAxes& axes, RoomSegmentationResult* result);
+                 const std::vector<Eigen::Vector3d>& path, const WallMap& walls,
+                 const DominantAxes& axes, RoomSegmentationResult* result);
   void clusterVoxels(const WallMap& walls, const DominantAxes& axes,
                      RoomSegmentationResult* result);
 

@@ -26,6 +26,10 @@ struct TacsFreeSpaceConfig {
   /// A room observation is also emitted after this many keyframes in one region, so a robot that
   /// stays in one room still reports it (the next observation is merged into it) [-].
   int max_keyframes_per_observation = 40;
+  /// A region no pair of facing walls bounds (one around a corner of two corridors) is extracted
+  /// again from its free space within this distance (xy) of the robot's positions in it; 0 = off
+  /// [m].
+  double path_retry_radius = 4.0;
   /// The robot is on the safe node nearest to it within this radius (xy) [m].
   double robot_search_radius = 0.4;
   /// T_inside of a keyframe is its room-graph component within this distance (xy) of the robot,
@@ -43,6 +47,7 @@ struct TacsFreeSpaceConfig {
     v("jamb_max_angle_deg", jamb_max_angle_deg);
     v("jamb_max_offset", jamb_max_offset);
     v("max_keyframes_per_observation", max_keyframes_per_observation);
+    v("path_retry_radius", path_retry_radius);
     v("robot_search_radius", robot_search_radius);
     v("local_radius", local_radius);
     v("border_distance", border_distance);

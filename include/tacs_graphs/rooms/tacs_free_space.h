@@ -56,6 +56,7 @@ std::vector<Doorway> findDoorways(const std::map<uint32_t, WallLandmark>& landma
 struct FreeSpaceRegion {
   std::vector<Eigen::Vector3d> points;  // map-frame node positions
   std::vector<uint32_t> keyframe_ids;
+  std::vector<Eigen::Vector3d> keyframe_positions;  // the robot's, in keyframe_ids order
 };
 
 class TacsFreeSpace {

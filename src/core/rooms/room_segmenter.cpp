@@ -1,5 +1,6 @@
 #include "tacs_graphs/rooms/room_segmenter.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "tacs_graphs/common/timing.h"
@@ -27,13 +28,30 @@ RoomSegmenter::RoomSegmenter(const RoomsConfig& config, const DominantAxesConfig
 }
 
 void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
-                              std::vector<uint32_t> keyframe_ids, const WallMap& walls,
+                              std::vector<uint32_t> keyframe_ids,
+                              const std::vector<Eigen::Vector3d>& path, const WallMap& walls,
                               const DominantAxes& axes, RoomSegmentationResult* result) {
   if (!axes.valid) {
     result->rejected.push_back("building axes unknown (too few walls)");
     return;
   }
   RoomExtractionResult extracted = extractRoom(points, walls.landmarks(), axes, config_.extraction);
+  const double radius = config_.tacs.path_retry_radius;
+  if (!extracted.found && radius > 0.0 && !path.empty()) {
+    // A region around a corner of two corridors lies half in each: no facing pair holds most of
+    // it. The free space near the robot's path is the corridor it drove along.
+    std::vector<Eigen::Vector3d> near;
+    for (const auto& p : points) {
+      const bool close = std::any_of(path.begin(), path.end(), [&](const Eigen::Vector3d& q) {
+        return (p - q).head<2>().squaredNorm() <= radius * radius;
+      });
+      if (close) near.push_back(p);
+    }
+    if (near.size() < points.size()) {
+      RoomExtractionResult retried = extractRoom(near, walls.landmarks(), axes, config_.extraction);
+      if (retried.found) extracted = std::move(retried);
+    }
+  }
   if (!extracted.found) {
     result->rejected.push_back(extracted.reason);
     return;
@@ -53,7 +71,7 @@ void RoomSegmenter::clusterVoxels(const WallMap& walls, const DominantAxes& axes
                                   RoomSegmentationResult* result) {
   keyframes_since_clustering_ = 0;
   for (auto& cluster : voxel_.clusters()) {
-    addRegion(std::move(cluster.points), std::move(cluster.keyframe_ids), walls, axes, result);
+    addRegion(std::move(cluster.points), std::move(cluster.keyframe_ids), {}, walls, axes, result);
   }
 }
 
@@ -81,7 +99,8 @@ RoomSegmentationResult RoomSegmenter::processKeyframe(uint32_t keyframe_id, cons
     result.robot_inside = step.inside;
     result.doorways = step.doorways;
     for (auto& region : step.finished) {
-      addRegion(std::move(region.points), std::move(region.keyframe_ids), walls, axes, &result);
+      addRegion(std::move(region.points), std::move(region.keyframe_ids), region.keyframe_positions,
+                walls, axes, &result);
     }
   }
   result.time_ms = watch.elapsedMs();
@@ -97,7 +116,8 @@ RoomSegmentationResult RoomSegmenter::finish(const TraversableMap& map, const Wa
   if (config_.method == "voxel") {
     clusterVoxels(walls, axes, &result);
   } else if (auto region = tacs_.flush(map, walls.landmarks())) {
-    addRegion(std::move(region->points), std::move(region->keyframe_ids), walls, axes, &result);
+    addRegion(std::move(region->points), std::move(region->keyframe_ids),
+              region->keyframe_positions, walls, axes, &result);
   }
   result.time_ms = watch.elapsedMs();
   return result;

@@ -15,6 +15,7 @@ void TacsFreeSpaceConfig::validate() const {
   requireConfig(jamb_max_offset > 0.0, p + "jamb_max_offset", "must be > 0");
   requireConfig(max_keyframes_per_observation >= 1, p + "max_keyframes_per_observation",
                 "must be >= 1");
+  requireConfig(path_retry_radius >= 0.0, p + "path_retry_radius", "must be >= 0 (0 = off)");
   requireConfig(robot_search_radius > 0.0, p + "robot_search_radius", "must be > 0");
   requireConfig(local_radius >= 0.0, p + "local_radius", "must be >= 0");
   requireConfig(border_distance >= 0.0, p + "border_distance", "must be >= 0");

@@ -159,6 +159,7 @@ std::optional<FreeSpaceRegion> TacsFreeSpace::emit(const TraversableMap& map,
   std::unordered_map<int, std::vector<Eigen::Vector2d>> seeds;  // component -> keyframes in it
   for (const auto& a : accumulated_) {
     region.keyframe_ids.push_back(a.keyframe_id);
+    region.keyframe_positions.push_back(a.position);
     const int l = labelAt(map, labels, a.position);
     if (l < 0) continue;
     if (config_.local_radius <= 0.0) {
