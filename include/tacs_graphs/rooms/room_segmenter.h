@@ -12,7 +12,9 @@
 //   at the end: seg.finish(trav_map, wall_map) (same result type).
 //
 // method "tacs": TacsFreeSpace gives finished free-space regions (T_room, eq. 3), each goes
-// through room extraction and TACS room merging (RoomMap::addObservation).
+// through room extraction (a region no facing pair bounds, around a corridor corner, is tried again
+// on its free space within tacs.path_retry_radius of the robot's positions in it) and TACS room
+// merging (RoomMap::addObservation).
 // method "voxel": the keyframe cloud is integrated into VoxelFreeSpace; every
 // update_every_keyframes keyframes all clusters are extracted and associated by centre distance
 // (RoomMap::addByCenterDistance), as S-Graphs+ does on a timer; every re-clustering reports each
