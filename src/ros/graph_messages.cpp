@@ -8,16 +8,6 @@ namespace {
 
 geometry_msgs::Point toPoint2(const Eigen::Vector2d& p) { return toPoint({p.x(), p.y(), 0.0}); }
 
-geometry_msgs::Vector3 toVector(const Eigen::Vector3d& v) {
-  geometry_msgs::Vector3 out;
-  out.x = v.x();
-  out.y = v.y();
-  out.z = v.z();
-  return out;
-}
-
-Eigen::Vector3d fromVector(const geometry_msgs::Vector3& v) { return {v.x, v.y, v.z}; }
-
 }  // namespace
 
 tacs_graphs::Keyframe toKeyframeMsg(uint32_t id, double stamp, const Pose3& T_odom_base,

@@ -4,15 +4,31 @@
 
 namespace tacs {
 
-geometry_msgs::Point toPoint(const Eigen::Vector3d& p) {
-  geometry_msgs::Point out;
-  out.x = p.x();
-  out.y = p.y();
-  out.z = p.z();
+namespace {
+
+// geometry_msgs::Point and Vector3 share their x, y, z fields.
+template <class XyzMsg>
+XyzMsg toXyz(const Eigen::Vector3d& v) {
+  XyzMsg out;
+  out.x = v.x();
+  out.y = v.y();
+  out.z = v.z();
   return out;
 }
 
-Eigen::Vector3d fromPoint(const geometry_msgs::Point& p) { return {p.x, p.y, p.z}; }
+template <class XyzMsg>
+Eigen::Vector3d fromXyz(const XyzMsg& m) {
+  return {m.x, m.y, m.z};
+}
+
+}  // namespace
+
+geometry_msgs::Point toPoint(const Eigen::Vector3d& p) { return toXyz<geometry_msgs::Point>(p); }
+Eigen::Vector3d fromPoint(const geometry_msgs::Point& p) { return fromXyz(p); }
+geometry_msgs::Vector3 toVector(const Eigen::Vector3d& v) {
+  return toXyz<geometry_msgs::Vector3>(v);
+}
+Eigen::Vector3d fromVector(const geometry_msgs::Vector3& v) { return fromXyz(v); }
 
 geometry_msgs::Pose toPoseMsg(const Pose3& pose) { return tf2::toMsg(pose); }
 

@@ -4,6 +4,7 @@
 #include <geometry_msgs/Point.h>
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/TransformStamped.h>
+#include <geometry_msgs/Vector3.h>
 #include <nav_msgs/Odometry.h>
 
 #include <Eigen/Core>
@@ -15,6 +16,8 @@ namespace tacs {
 
 geometry_msgs::Point toPoint(const Eigen::Vector3d& p);
 Eigen::Vector3d fromPoint(const geometry_msgs::Point& p);
+geometry_msgs::Vector3 toVector(const Eigen::Vector3d& v);
+Eigen::Vector3d fromVector(const geometry_msgs::Vector3& v);
 
 geometry_msgs::Pose toPoseMsg(const Pose3& pose);
 Pose3 fromPoseMsg(const geometry_msgs::Pose& msg);
