@@ -4,8 +4,10 @@
 //   bench_walls_worlds [--worlds DIR] [--world NAME|FILE]... [--config YAML] [--verbose]
 //
 // Per world a keyframe is taken every 0.5 m of ground-truth path; its scan goes to the levelled
-// base frame, is voxelised at 0.1 m and given to WallExtractor; the walls are moved to the world
-// frame and fed to WallMap (associate + mergeDuplicates at every keyframe, as the backend does).
+// base frame, is voxelised at 0.1 m and given to WallExtractor; the walls and the surfaces seen
+// over are moved to the world frame and fed to WallMap (addSeenOver, associate, mergeDuplicates
+// at every keyframe, as the backend does). A detection is a wall detection unless the landmark it
+// joins is no wall (WallMap::walls(): it lies on a surface seen over before, or is too short).
 // Ground truth: each wall box of the world has two long faces, cut where another full-height wall
 // stands against them (a face running behind a partition is a wall in each room); the faces of
 // full-height walls (z_max >= 1.5 m) longer than 1.5 m count, pieces shorter than 0.6 m do not. At
@@ -16,11 +18,12 @@
 // at the detection's midpoint within 0.15 m, overlapping extents. P and R are micro-averaged over
 // the keyframes; "P <= 10 m" counts only detections within the visible range, where the ground
 // truth is defined; "P any" also accepts a match with any vertical surface of the world (half
-// walls, rails, pit walls, box sides, faces out of range or barely seen). After the run, landmarks
-// are counted against the faces ever visible
-// ("on those faces": landmarks that match one of them; the others sit on furniture, half walls,
-// ...); "held twice" counts faces matched by two or more landmarks, "stray" landmarks that match
-// no surface of the world.
+// walls, rails, pit walls, box sides, faces out of range or barely seen). After the run, the walls
+// of the map are counted against the faces ever visible ("on those faces": walls that match one
+// of them; the others sit on furniture, pillars, half walls, ...) and against the wall sides
+// ever visible (a face cut by a partition is one side: the map holds one plane along it, which
+// bounds the rooms on both sides of the partition); "held twice" counts faces matched by two or
+// more walls, "stray" walls that match no surface of the world.
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -57,6 +60,7 @@ struct Face {
   Eigen::Vector2d n, a, b;
   double d, z_min, z_max;
   bool ground_truth;  // full height and long enough
+  int side = -1;      // the wall box side it was cut from (2 per wall); -1 for box faces
   double length() const { return (b - a).norm(); }
 };
 
@@ -115,6 +119,7 @@ void appendWallFaces(const tacs::sim::World& world, std::vector<Face>* faces) {
           // The wall counts by its length; a piece of it too short to be seen does not.
           f.ground_truth =
               w.z_max >= kMinWallTop && length > kMinFaceLength && f.length() >= kMinFaceSpan;
+          f.side = static_cast<int>(2 * i) + (side > 0.0 ? 0 : 1);
           faces->push_back(f);
         }
         start = std::max(start, t1);
@@ -214,7 +219,8 @@ struct WorldScore {
   size_t near_detections = 0, near_true_positives = 0;      // ... within the visible range
   size_t misses[kMissKinds] = {};                           // detections that are no TP, by kind
   size_t visible = 0, found = 0;                            // per-keyframe visible faces
-  size_t ever_visible = 0, landmarks = 0, on_faces = 0, held = 0, held_twice = 0, stray = 0;
+  size_t ever_visible = 0, sides_visible = 0, landmarks = 0, on_faces = 0, held = 0, held_twice = 0,
+         stray = 0;
   std::vector<double> ms;
 };
 
@@ -249,9 +255,14 @@ WorldScore runWorld(const std::string& path, const tacs::bench::WorldsArgs& args
     const Eigen::Vector3d sensor = T_world_level.inverse() * T_world_sensor.translation();
     const tacs::WallExtractionResult extracted = extractor.extract(cloud, sensor);
     score.ms.push_back(extracted.time_ms);
+    // What the map makes of the detections: a surface seen over before is no wall.
+    walls.addSeenOver(extracted.seen_over, T_world_level);
+    const auto associations = walls.associate(extracted.walls, T_world_level);
     std::vector<bool> found(faces.size(), false);
-    for (const auto& wall : extracted.walls) {
-      const tacs::WallSegment w = tacs::transformWall(wall, T_world_level);
+    for (const auto& a : associations) {
+      if (!walls.isWall(a.landmark_id)) continue;
+      const tacs::WallSegment w =
+          tacs::transformWall(extracted.walls[a.observation_index], T_world_level);
       const bool near =
           distanceToSegment(w.endpoints[0], w.endpoints[1], last.head<2>()) <= kVisibleRange;
       bool tp = false, any = false;
@@ -274,12 +285,11 @@ WorldScore runWorld(const std::string& path, const tacs::bench::WorldsArgs& args
       score.found += visible[k] && found[k];
       ever_visible[k] = ever_visible[k] || visible[k];
     }
-    walls.associate(extracted.walls, T_world_level);
     walls.mergeDuplicates();
   }
 
   std::vector<int> holders(faces.size(), 0);
-  for (const auto& [id, lm] : walls.landmarks()) {
+  for (const auto& [id, lm] : walls.walls()) {
     ++score.landmarks;
     bool any = false;
     int on_faces = 0;
@@ -316,6 +326,12 @@ WorldScore runWorld(const std::string& path, const tacs::bench::WorldsArgs& args
           lm.endpoints[1].x(), lm.endpoints[1].y());
     }
   }
+  std::vector<int> sides;
+  for (size_t k = 0; k < faces.size(); ++k) {
+    if (ever_visible[k]) sides.push_back(faces[k].side);
+  }
+  std::sort(sides.begin(), sides.end());
+  score.sides_visible = std::unique(sides.begin(), sides.end()) - sides.begin();
   for (size_t k = 0; k < faces.size(); ++k) {
     score.ever_visible += ever_visible[k];
     score.held += holders[k] >= 1;
@@ -342,9 +358,9 @@ int main(int argc, char** argv) {
   std::printf(
       "Walls on the simulated worlds, keyframe every %.1f m, ground-truth poses; load %s\n\n"
       "| world | kf | detections | P | P <= %.0f m | P any | visible faces | R "
-      "| faces ever visible | landmarks | on those faces | faces held | held twice "
-      "| stray landmarks | extract ms |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+      "| faces ever visible | wall sides | walls | on those faces | faces held | held twice "
+      "| stray walls | extract ms |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
       kKeyframeDistance, tacs::bench::loadAverage().c_str(), kVisibleRange);
   std::vector<std::pair<std::string, WorldScore>> scores;
   for (const auto& path : tacs::bench::worldPaths(&args)) {
@@ -353,14 +369,13 @@ int main(int argc, char** argv) {
       scores.emplace_back(std::filesystem::path(path).stem().string(), s);
       std::printf(
           "| %-17s | %4zu | %5zu | %5.3f | %5.3f | %5.3f | %5zu | %5.3f | %3zu | %3zu | %3zu | "
-          "%3zu "
-          "| %2zu | %2zu | %5.1f |\n",
+          "%3zu | %3zu | %2zu | %2zu | %5.1f |\n",
           scores.back().first.c_str(), s.keyframes, s.detections,
           tacs::bench::ratio(s.true_positives, s.detections),
           tacs::bench::ratio(s.near_true_positives, s.near_detections),
           tacs::bench::ratio(s.any_face, s.detections), s.visible,
-          tacs::bench::ratio(s.found, s.visible), s.ever_visible, s.landmarks, s.on_faces, s.held,
-          s.held_twice, s.stray, tacs::bench::meanOf(s.ms));
+          tacs::bench::ratio(s.found, s.visible), s.ever_visible, s.sides_visible, s.landmarks,
+          s.on_faces, s.held, s.held_twice, s.stray, tacs::bench::meanOf(s.ms));
       std::fflush(stdout);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "%s: %s\n", path.c_str(), e.what());

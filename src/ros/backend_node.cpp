@@ -83,20 +83,26 @@ void BackendNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg) {
 }
 
 void BackendNode::wallsCallback(const tacs_graphs::WallObservations::ConstPtr& msg) {
-  std::vector<WallSegment> walls;
-  walls.reserve(msg->walls.size());
-  for (const auto& w : msg->walls) {
-    const WallSegment s = fromWallObservationMsg(w);
-    if (!s.normal.allFinite() || !std::isfinite(s.d) || s.normal.norm() < 0.5) {
-      warnings_.warn("wall observations", "non-finite or zero plane, observation skipped");
-      continue;
+  const auto valid = [this](const std::vector<tacs_graphs::WallObservation>& observations) {
+    std::vector<WallSegment> segments;
+    segments.reserve(observations.size());
+    for (const auto& w : observations) {
+      const WallSegment s = fromWallObservationMsg(w);
+      if (!s.normal.allFinite() || !std::isfinite(s.d) || s.normal.norm() < 0.5) {
+        warnings_.warn("wall observations", "non-finite or zero plane, observation skipped");
+        continue;
+      }
+      segments.push_back(s);
     }
-    walls.push_back(s);
-  }
+    return segments;
+  };
+  KeyframeWalls walls;
+  walls.walls = valid(msg->walls);
+  walls.seen_over = valid(msg->seen_over);
   const auto outcome = session_->addWalls(msg->keyframe_id, walls);
   if (outcome == BackendSession::Outcome::kDropped) {
     warnings_.warn("wall observations", "walls of a keyframe that never arrived, dropped");
-  } else if (outcome == BackendSession::Outcome::kAdded && !walls.empty()) {
+  } else if (outcome == BackendSession::Outcome::kAdded && !walls.walls.empty()) {
     changed_ = true;
   }
 }

@@ -125,20 +125,25 @@ BackendSession::Outcome BackendSession::addKeyframe(uint32_t id, double stamp,
   return Outcome::kAdded;
 }
 
-BackendSession::Outcome BackendSession::addWalls(uint32_t keyframe_id,
-                                                 const std::vector<WallSegment>& walls) {
+BackendSession::Outcome BackendSession::addWalls(uint32_t keyframe_id, const KeyframeWalls& walls) {
   if (!backend_.hasKeyframe(keyframe_id)) {
     if (keyframeCount() > 0 && keyframe_id + options_.max_pending_keyframes < newest_keyframe_) {
       return Outcome::kDropped;  // its keyframe is long gone (lost message or another run)
     }
-    auto& pending = pending_walls_[keyframe_id];
-    pending.insert(pending.end(), walls.begin(), walls.end());
+    KeyframeWalls& pending = pending_walls_[keyframe_id];
+    pending.walls.insert(pending.walls.end(), walls.walls.begin(), walls.walls.end());
+    pending.seen_over.insert(pending.seen_over.end(), walls.seen_over.begin(),
+                             walls.seen_over.end());
     return Outcome::kBuffered;
   }
-  if (walls.empty()) return Outcome::kAdded;
-  backend_.addWallObservations(keyframe_id, walls);
+  if (walls.walls.empty() && walls.seen_over.empty()) return Outcome::kAdded;
+  backend_.addWallObservations(keyframe_id, walls.walls, walls.seen_over);
   nlohmann::json entry = {{"keyframe", keyframe_id}, {"walls", nlohmann::json::array()}};
-  for (const WallSegment& w : walls) entry["walls"].push_back(wallToJson(w));
+  for (const WallSegment& w : walls.walls) entry["walls"].push_back(wallToJson(w));
+  if (!walls.seen_over.empty()) {
+    entry["seen_over"] = nlohmann::json::array();
+    for (const WallSegment& w : walls.seen_over) entry["seen_over"].push_back(wallToJson(w));
+  }
   journal_walls_.push_back(entry.dump());
   return Outcome::kAdded;
 }
@@ -161,7 +166,7 @@ BackendSession::Outcome BackendSession::addLoop(const LoopEdge& edge, const Matr
 void BackendSession::flushPending(uint32_t keyframe_id) {
   const auto walls = pending_walls_.find(keyframe_id);
   if (walls != pending_walls_.end()) {
-    const std::vector<WallSegment> segments = std::move(walls->second);
+    const KeyframeWalls segments = std::move(walls->second);
     pending_walls_.erase(walls);
     addWalls(keyframe_id, segments);
   }
@@ -250,10 +255,14 @@ size_t BackendSession::recover(const std::string& dir) {
   if (!in) throw std::runtime_error(path + ": cannot open");
   try {
     const nlohmann::json j = nlohmann::json::parse(in);
-    std::map<uint32_t, std::vector<WallSegment>> walls;
+    std::map<uint32_t, KeyframeWalls> walls;
     for (const auto& w : j.at("walls")) {
-      auto& list = walls[w.at("keyframe").get<uint32_t>()];
-      for (const auto& s : w.at("walls")) list.push_back(wallFromJson(s));
+      KeyframeWalls& kf = walls[w.at("keyframe").get<uint32_t>()];
+      for (const auto& s : w.at("walls")) kf.walls.push_back(wallFromJson(s));
+      // Journals written before surfaces seen over were reported have none.
+      if (w.contains("seen_over")) {
+        for (const auto& s : w.at("seen_over")) kf.seen_over.push_back(wallFromJson(s));
+      }
     }
     size_t recovered = 0;
     for (const auto& k : j.at("keyframes")) {

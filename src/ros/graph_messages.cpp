@@ -203,6 +203,7 @@ tacs_graphs::SceneGraph toSceneGraphMsg(const SceneGraph& graph,
     m.z_max = w.z_range[1];
     const auto it = wall_observations.find(id);
     m.observation_count = it == wall_observations.end() ? 0 : it->second;
+    m.is_wall = w.is_wall;
     msg.walls.push_back(m);
   }
   for (const auto& [id, r] : graph.rooms) {
@@ -248,6 +249,7 @@ SceneGraph fromSceneGraphMsg(const tacs_graphs::SceneGraph& msg) {
     w.d = m.d;
     for (int i = 0; i < 2; ++i) w.endpoints[i] = {m.endpoints[i].x, m.endpoints[i].y};
     w.z_range = {m.z_min, m.z_max};
+    w.is_wall = m.is_wall;
     graph.walls[m.id] = w;
   }
   for (const auto& m : msg.rooms) {

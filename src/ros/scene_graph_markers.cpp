@@ -50,7 +50,8 @@ Eigen::Vector3d wallAnchor(const WallNode& w) {
 void addWalls(const SceneGraph& graph, const std::string& frame, double stamp,
               visualization_msgs::MarkerArray* out) {
   for (const auto& [id, w] : graph.walls) {
-    Marker m = makeMarker(frame, stamp, "walls", static_cast<int>(id), Marker::CUBE);
+    Marker m = makeMarker(frame, stamp, w.is_wall ? "walls" : "other_planes", static_cast<int>(id),
+                          Marker::CUBE);
     const Eigen::Vector2d axis = w.endpoints[1] - w.endpoints[0];
     const double length = std::max(axis.norm(), 0.05);
     const double height = std::max(w.z_range[1] - w.z_range[0], 0.05);
@@ -63,10 +64,12 @@ void addWalls(const SceneGraph& graph, const std::string& frame, double stamp,
     m.scale.x = length;
     m.scale.y = 0.08;
     m.scale.z = height;
-    // Colour by facing direction so the two faces of a wall and the axes stand apart.
+    // Colour by facing direction so the two faces of a wall and the axes stand apart; other
+    // planes grey and faint.
     const double hue = std::atan2(w.normal.y(), w.normal.x());
-    m.color = rgba(0.5f + 0.5f * std::cos(hue), 0.5f + 0.5f * std::sin(hue),
-                   0.5f - 0.5f * std::cos(hue), 0.85f);
+    m.color = w.is_wall ? rgba(0.5f + 0.5f * std::cos(hue), 0.5f + 0.5f * std::sin(hue),
+                               0.5f - 0.5f * std::cos(hue), 0.85f)
+                        : rgba(0.6f, 0.6f, 0.6f, 0.4f);
     out->markers.push_back(m);
   }
 }

@@ -31,6 +31,8 @@ void WallExtractionNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr&
   out.keyframe_id = kf.id;
   out.walls.reserve(result.walls.size());
   for (const WallSegment& w : result.walls) out.walls.push_back(toWallObservationMsg(w));
+  out.seen_over.reserve(result.seen_over.size());
+  for (const WallSegment& w : result.seen_over) out.seen_over.push_back(toWallObservationMsg(w));
   // Published even when empty: the backend then knows this keyframe's walls are complete.
   walls_pub_.publish(out);
 }

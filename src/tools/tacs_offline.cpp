@@ -2,6 +2,7 @@
 // on a simulated world streamed in-process, and writes the run folder of DESIGN.md.
 #include <pcl/common/transforms.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -222,7 +223,7 @@ int run(const Options& o) {
     if (!o.quiet && (k % 20 == 0 || k == source->size())) {
       std::cerr << "\r[tacs_offline] scan " << k << "/" << source->size() << "  keyframes "
                 << pipeline_ptr->stats().keyframes << "  walls "
-                << pipeline_ptr->backend().wallMap().landmarks().size() << "  rooms "
+                << pipeline_ptr->backend().wallMap().walls().size() << "  rooms "
                 << pipeline_ptr->backend().roomCount() << "  " << std::fixed << std::setprecision(1)
                 << 1e3 * k / watch.elapsedMs() << " scans/s" << std::flush;
     }
@@ -237,12 +238,14 @@ int run(const Options& o) {
   source->writeGroundTruth(o.out);
   const tacs::PipelineStats& stats = pipeline.stats();
   const tacs::SceneGraph graph = pipeline.sceneGraph();
+  const size_t walls = static_cast<size_t>(std::count_if(
+      graph.walls.begin(), graph.walls.end(), [](const auto& w) { return w.second.is_wall; }));
   std::cout << std::fixed << std::setprecision(2) << "[tacs_offline] " << stats.scans << " scans ("
-            << stats.rejected_scans << " rejected), " << stats.keyframes << " keyframes, "
-            << graph.walls.size() << " walls, " << graph.rooms.size() << " rooms, " << wall_s
-            << " s (" << (wall_s > 0 ? stats.scans / wall_s : 0.0) << " scans/s), t_FGO "
-            << pipeline.fgoSeconds() << " s, loops " << graph.loops.size() << ", t_LD "
-            << pipeline.ldSeconds() << " s -> " << o.out << "\n";
+            << stats.rejected_scans << " rejected), " << stats.keyframes << " keyframes, " << walls
+            << " walls (+" << graph.walls.size() - walls << " other planes), " << graph.rooms.size()
+            << " rooms, " << wall_s << " s (" << (wall_s > 0 ? stats.scans / wall_s : 0.0)
+            << " scans/s), t_FGO " << pipeline.fgoSeconds() << " s, loops " << graph.loops.size()
+            << ", t_LD " << pipeline.ldSeconds() << " s -> " << o.out << "\n";
   printAccuracy(pipeline, source->groundTruth());
   return stats.scans > stats.rejected_scans ? 0 : 1;
 }

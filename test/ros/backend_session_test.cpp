@@ -32,7 +32,7 @@ Matrix6d information() { return Matrix6d::Identity() * 1e4; }
 
 TEST(BackendSession, WallsBeforeTheirKeyframeAreBuffered) {
   BackendSession session{PipelineConfig(), BackendSessionOptions()};
-  EXPECT_EQ(session.addWalls(0, wallAhead()), BackendSession::Outcome::kBuffered);
+  EXPECT_EQ(session.addWalls(0, {wallAhead(), {}}), BackendSession::Outcome::kBuffered);
   EXPECT_EQ(session.pendingCount(), 1u);
   EXPECT_EQ(session.addKeyframe(0, 1.0, Pose3::Identity(), Matrix6d::Zero(), smallCloud()),
             BackendSession::Outcome::kAdded);
@@ -45,7 +45,7 @@ TEST(BackendSession, WallsBeforeTheirKeyframeAreBuffered) {
   std::vector<WallSegment> nearer = wallAhead();
   nearer[0].d = 1.5;
   for (auto& e : nearer[0].endpoints) e.x() = 1.5;
-  EXPECT_EQ(session.addWalls(1, nearer), BackendSession::Outcome::kAdded);
+  EXPECT_EQ(session.addWalls(1, {nearer, {}}), BackendSession::Outcome::kAdded);
   const SceneGraph g = session.sceneGraph();
   ASSERT_EQ(g.walls.size(), 1u);  // the same wall seen twice
   EXPECT_EQ(session.wallObservationCounts().begin()->second, 2u);
@@ -97,7 +97,7 @@ TEST(BackendSession, MappedRoomsBecomeRoomNodesOfTheOptimisedGraph) {
   MappedRoom no_walls;
   no_walls.room.walls = {0, 1, -1, -1};
   EXPECT_FALSE(session.setRoom(no_walls));  // the backend holds no such walls yet
-  session.addWalls(0, facingWalls());
+  session.addWalls(0, {facingWalls(), {}});
   session.addKeyframe(1, 2.0, poseFromXyzRpy(0.3, 0, 0, 0, 0, 0), information(), nullptr);
   ASSERT_EQ(session.sceneGraph().walls.size(), 2u);
   EXPECT_TRUE(session.setRoom(corridorBetween(session.sceneGraph(), 5)));
@@ -124,7 +124,7 @@ TEST(BackendSession, SaveWritesProductsAndRecoverRestoresTheGraph) {
     for (uint32_t id = 0; id < 4; ++id) {
       session.addKeyframe(id, 1.0 + id, poseFromXyzRpy(0.5 * id, 0, 0, 0, 0, 0),
                           id == 0 ? Matrix6d::Zero() : information(), smallCloud());
-      session.addWalls(id, id == 0 ? facingWalls() : wallAhead());
+      session.addWalls(id, {id == 0 ? facingWalls() : wallAhead(), {}});
     }
     MappedRoom room = corridorBetween(session.sceneGraph(), 0);
     room.room.keyframe_ids = {2, 3};
@@ -149,6 +149,37 @@ TEST(BackendSession, SaveWritesProductsAndRecoverRestoresTheGraph) {
   EXPECT_EQ(
       restarted.addKeyframe(4, 5.0, poseFromXyzRpy(2.0, 0, 0, 0, 0, 0), information(), nullptr),
       BackendSession::Outcome::kAdded);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(BackendSession, AWallOnASurfaceSeenOverLeavesTheGraphAndStaysOutAfterRecovery) {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / "tacs_backend_session_seen_over").string();
+  std::filesystem::remove_all(dir);
+  BackendSession session{PipelineConfig(), BackendSessionOptions()};
+  session.addKeyframe(0, 1.0, Pose3::Identity(), Matrix6d::Zero(), smallCloud());
+  session.addWalls(0, {facingWalls(), {}});
+  ASSERT_EQ(session.sceneGraph().walls.size(), 2u);
+  // From the next keyframe (buffered until it arrives) the surface ahead was seen over: a
+  // cabinet, not a wall.
+  EXPECT_EQ(session.addWalls(1, {{}, wallAhead()}), BackendSession::Outcome::kBuffered);
+  session.addKeyframe(1, 2.0, Pose3::Identity(), information(), smallCloud());
+  // Both stay plane landmarks; only the one behind is a wall.
+  const auto walls = [](const SceneGraph& g) {
+    std::vector<WallNode> out;
+    for (const auto& [id, w] : g.walls) {
+      if (w.is_wall) out.push_back(w);
+    }
+    return out;
+  };
+  const SceneGraph g = session.sceneGraph();
+  EXPECT_EQ(g.walls.size(), 2u);
+  ASSERT_EQ(walls(g).size(), 1u);
+  EXPECT_GT(walls(g)[0].normal.x(), 0.0);
+  session.save(dir, MapExportConfig());
+  BackendSession restarted{PipelineConfig(), BackendSessionOptions()};
+  EXPECT_EQ(restarted.recover(dir), 2u);
+  EXPECT_EQ(walls(restarted.sceneGraph()).size(), 1u);
   std::filesystem::remove_all(dir);
 }
 

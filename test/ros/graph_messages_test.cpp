@@ -166,6 +166,11 @@ TEST(GraphMessages, SceneGraphRoundTrip) {
   EXPECT_DOUBLE_EQ(back.walls.at(4).d, -1.5);
   EXPECT_TRUE(back.walls.at(4).endpoints[1].isApprox(Eigen::Vector2d(1.5, 3.0)));
   EXPECT_DOUBLE_EQ(back.walls.at(4).z_range[1], 2.8);
+  EXPECT_TRUE(msg.walls[0].is_wall);
+  EXPECT_TRUE(back.walls.at(4).is_wall);
+  SceneGraph other = g;
+  other.walls.at(4).is_wall = false;
+  EXPECT_FALSE(fromSceneGraphMsg(toSceneGraphMsg(other, {}, "map", 12.0)).walls.at(4).is_wall);
   ASSERT_EQ(back.rooms.count(7), 1u);
   EXPECT_EQ(back.rooms.at(7).kind, RoomKind::kCorridor);
   EXPECT_EQ(back.rooms.at(7).wall_ids, (std::vector<uint32_t>{4}));

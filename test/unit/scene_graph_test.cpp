@@ -25,6 +25,11 @@ SceneGraph makeGraph() {
   w.endpoints = {Eigen::Vector2d(0, 1), Eigen::Vector2d(2.5, -1e-9)};
   w.z_range = {0.0, 2.8};
   g.walls[7] = w;
+  w.id = 9;  // a cabinet front: a plane landmark, no wall
+  w.d = 1.0;
+  w.z_range = {0.0, 1.2};
+  w.is_wall = false;
+  g.walls[9] = w;
   RoomNode r;
   r.id = 4;
   r.kind = RoomKind::kCorridor;
@@ -51,6 +56,23 @@ TEST(SceneGraph, JsonRoundTripIsExact) {
   EXPECT_EQ(back.toJson(), j);
   EXPECT_EQ(back.keyframes.at(1).position, g.keyframes.at(1).position);
   EXPECT_EQ(back.walls.at(7).d, g.walls.at(7).d);
+  EXPECT_TRUE(back.walls.at(7).is_wall);
+  EXPECT_FALSE(back.walls.at(9).is_wall);
+  // Graphs saved without the flag hold walls only; a flag of the wrong type names the field.
+  nlohmann::json old = j;
+  old["walls"][1].erase("is_wall");
+  EXPECT_TRUE(SceneGraph::fromJson(old).walls.at(9).is_wall);
+  old["walls"][1]["is_wall"] = "no";
+  EXPECT_THROW(
+      {
+        try {
+          SceneGraph::fromJson(old);
+        } catch (const std::runtime_error& e) {
+          EXPECT_NE(std::string(e.what()).find("walls[1].is_wall"), std::string::npos);
+          throw;
+        }
+      },
+      std::runtime_error);
   EXPECT_EQ(back.rooms.at(4).kind, RoomKind::kCorridor);
   EXPECT_EQ(back.loops[0].to, 2u);
 }

@@ -158,6 +158,7 @@ TEST(WallExtraction, LowSurfacesTheBeamsPassedOverAreNoWalls) {
   WallExtractionConfig cfg;
   const auto result = WallExtractor(cfg).extract(scene.cloud);
   EXPECT_TRUE(matching(result.walls, {-1, 0, 0}, 2.0).empty());
+  EXPECT_EQ(matching(result.seen_over, {-1, 0, 0}, 2.0).size(), 1u);  // reported apart
   // The room's walls stay although their tops are cut by the field of view (at 3 m the upper
   // beam meets the wall 0.8 m above the sensor, below min_wall_top).
   EXPECT_EQ(matching(result.walls, {1, 0, 0}, 3.0).size(), 1u);
@@ -178,13 +179,29 @@ TEST(WallExtraction, ACabinetInFrontOfAWallIsSeenOver) {
   WallExtractionConfig cfg;
   const auto result = WallExtractor(cfg).extract(scene.cloud);
   EXPECT_TRUE(matching(result.walls, {-1, 0, 0}, 4.5).empty());
+  EXPECT_EQ(matching(result.seen_over, {-1, 0, 0}, 4.5).size(), 1u);
   EXPECT_EQ(matching(result.walls, {-1, 0, 0}, 5.0).size(), 1u);  // the wall behind stays
+  EXPECT_TRUE(matching(result.seen_over, {-1, 0, 0}, 5.0).empty());
   EXPECT_EQ(matching(result.walls, {1, 0, 0}, 3.0).size(), 1u);
   // The wall behind spans it, so the on-wall test drops it as well; without both it is a wall.
   cfg.seen_over_min_points = 0;
   EXPECT_TRUE(matching(WallExtractor(cfg).extract(scene.cloud).walls, {-1, 0, 0}, 4.5).empty());
   cfg.on_wall_max_depth = 0.0;
   EXPECT_EQ(matching(WallExtractor(cfg).extract(scene.cloud).walls, {-1, 0, 0}, 4.5).size(), 1u);
+}
+
+TEST(WallExtraction, AWallUnderWallCabinetsIsNotSeenOver) {
+  // Wall cabinets 0.45 m deep hang on the wall x = 5 from 0.5 m below the sensor upwards: the
+  // wall below them tops out low, but the rays above it end on the cabinets, so it is neither a
+  // wall of this scan nor a surface seen over (which would mark the wall for good).
+  test::SyntheticScene scene;
+  scene.wall({5, -2}, {5, 4}, -0.8, -0.5);
+  scene.wall({4.55, -2}, {4.55, 4}, -0.5, 0.3);  // cabinet fronts
+  scene.slab(-1, 5, -2, 4, -0.8);
+  cropAboveElevation(&scene.cloud, 15.0);
+  const auto result = WallExtractor(WallExtractionConfig{}).extract(scene.cloud);
+  EXPECT_TRUE(matching(result.walls, {-1, 0, 0}, 5.0).empty());
+  EXPECT_TRUE(matching(result.seen_over, {-1, 0, 0}, 5.0).empty());
 }
 
 TEST(WallExtraction, AClosedDoorOnAWallIsNoWall) {
@@ -238,9 +255,14 @@ TEST(WallExtraction, AHalfWallInLineWithAWallIsCutOffIt) {
   scene.wall({5, 1}, {5, 4}, -0.8, 0.0);
   scene.wall({9, -2}, {9, 6}, -0.8, 1.8);
   scene.slab(-1, 9, -2, 6, -0.8);
-  const auto walls =
-      matching(WallExtractor(WallExtractionConfig{}).extract(scene.cloud).walls, {-1, 0, 0}, 5.0);
+  const auto result = WallExtractor(WallExtractionConfig{}).extract(scene.cloud);
+  const auto walls = matching(result.walls, {-1, 0, 0}, 5.0);
   ASSERT_EQ(walls.size(), 1u);
+  // The half wall is reported as seen over.
+  const auto half = matching(result.seen_over, {-1, 0, 0}, 5.0);
+  ASSERT_EQ(half.size(), 1u);
+  EXPECT_TRUE(spans(half[0], {5, 1}, {5, 4}, 0.55))
+      << half[0].endpoints[0].transpose() << " / " << half[0].endpoints[1].transpose();
   // The cut falls on the stretches of max_gap (0.5 m): the one holding the joint stays.
   EXPECT_TRUE(spans(walls[0], {5, -2}, {5, 1}, 0.55))
       << walls[0].endpoints[0].transpose() << " / " << walls[0].endpoints[1].transpose();

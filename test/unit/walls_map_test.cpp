@@ -138,6 +138,56 @@ TEST(WallMap, MergeChainsReportSurvivingIds) {
   }
 }
 
+TEST(WallMap, ALandmarkOnASurfaceSeenOverIsNoWall) {
+  WallMap map;
+  const Pose3 T_map_base = Pose3::Identity();
+  // A cabinet row at x = 4 (y 0..3) seen over from afar, later seen from too close to see over
+  // it: the close observation makes a landmark, which lies on the surface seen over.
+  map.addSeenOver({observation({4, 0}, {4, 3}, 100)}, T_map_base);
+  ASSERT_EQ(map.seenOverSurfaces().size(), 1u);
+  // The wall x = 4.5 behind it (y -2..5) and the cabinet seen close up.
+  const auto a = map.associate(
+      {observation({4.5, -2}, {4.5, 5}, 300), observation({4.02, 0.2}, {4.02, 2.9}, 80)},
+      T_map_base);
+  ASSERT_EQ(a.size(), 2u);
+  ASSERT_NE(a[0].landmark_id, a[1].landmark_id);
+  EXPECT_FALSE(map.isSeenOver(a[0].landmark_id));  // 0.5 m behind the surface: a wall
+  EXPECT_TRUE(map.isSeenOver(a[1].landmark_id));
+  EXPECT_FALSE(map.isSeenOver(999));
+  EXPECT_TRUE(map.isWall(a[0].landmark_id));
+  EXPECT_FALSE(map.isWall(a[1].landmark_id));
+  const auto walls = map.walls();
+  ASSERT_EQ(walls.size(), 1u);
+  EXPECT_EQ(walls.begin()->first, a[0].landmark_id);
+  // A wall that only overlaps a short surface seen over on its plane (a low cabinet pushed
+  // against it, 0.1 m deep) stays a wall: less than half its length is covered.
+  map.addSeenOver({observation({4.4, 0}, {4.4, 2}, 50)}, T_map_base);
+  EXPECT_FALSE(map.isSeenOver(a[0].landmark_id));
+  // Seen over along most of its length, it is not a wall.
+  map.addSeenOver({observation({4.45, 2}, {4.45, 4.5}, 50)}, T_map_base);
+  EXPECT_TRUE(map.isSeenOver(a[0].landmark_id));
+  EXPECT_TRUE(map.walls().empty());
+}
+
+TEST(WallMap, LandmarksShorterThanAWallAreNoWallsUntilTheyGrow) {
+  WallAssociationConfig config;
+  config.min_wall_length = 1.0;
+  WallMap map(config);
+  // A pillar face 0.6 m wide, and a wall first seen as a 0.7 m piece.
+  const auto a =
+      map.associate({observation({3, -0.3}, {3, 0.3}, 60), observation({-2, 1}, {-2, 1.7}, 70)},
+                    Pose3::Identity());
+  EXPECT_FALSE(map.isWall(a[0].landmark_id));
+  EXPECT_FALSE(map.isWall(a[1].landmark_id));
+  EXPECT_TRUE(map.walls().empty());
+  EXPECT_EQ(map.landmarks().size(), 2u);  // still landmarks
+  map.associate({observation({-2, 1.5}, {-2, 3}, 90)}, Pose3::Identity());
+  EXPECT_TRUE(map.isWall(a[1].landmark_id));
+  ASSERT_EQ(map.walls().size(), 1u);
+  config.min_wall_length = -1.0;
+  EXPECT_THROW(WallMap{config}, ConfigError);
+}
+
 TEST(WallMap, UpdateLandmarkPlaneMovesTheExtentAndKeepsTheFacing) {
   WallMap map;
   const auto a = map.associate({observation({-2, 3}, {2, 3}, 100)}, Pose3::Identity());

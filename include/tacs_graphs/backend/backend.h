@@ -29,8 +29,11 @@ class Backend {
   bool hasKeyframe(uint32_t id) const { return keyframes_.count(id) > 0; }
 
   /// Walls seen from keyframe `id` (base frame). Returns the landmark id of each observation.
+  /// `seen_over` are the surfaces the extractor saw over (WallExtractionResult::seen_over): the
+  /// wall map remembers them, and landmarks lying on them are no walls (WallNode::is_wall).
   std::vector<uint32_t> addWallObservations(uint32_t keyframe_id,
-                                            const std::vector<WallSegment>& walls);
+                                            const std::vector<WallSegment>& walls,
+                                            const std::vector<WallSegment>& seen_over = {});
 
   /// A loop closure: the pose of keyframe `to` in the frame of keyframe `from`.
   void addLoopClosure(uint32_t from, uint32_t to, const Pose3& T_from_to,
@@ -62,8 +65,9 @@ class Backend {
   Eigen::Vector3d keyframePosition(uint32_t id) const { return graph_.keyframePosition(id); }
   /// T_map_odom from the latest keyframe.
   Pose3 mapToOdom() const;
-  /// Keyframes, walls, rooms (optimised centres, free space, keyframes; keyframes get the
-  /// room_id of the room listing them) and loops.
+  /// Keyframes, wall landmarks (WallNode::is_wall from WallMap::isWall()), rooms (optimised
+  /// centres, free space, keyframes; keyframes get the room_id of the room listing them) and
+  /// loops.
   SceneGraph sceneGraph() const;
   const WallMap& wallMap() const { return wall_map_; }
   /// Total optimisation time so far (t_FGO) and the number of optimisations.

@@ -20,6 +20,13 @@
 
 namespace tacs {
 
+/// What the wall extraction reported for one keyframe (base frame).
+struct KeyframeWalls {
+  std::vector<WallSegment> walls;
+  /// Surfaces seen over (WallExtractionResult::seen_over).
+  std::vector<WallSegment> seen_over;
+};
+
 struct BackendSessionOptions {
   size_t max_pending_keyframes = 300;  // wall/loop messages waiting for this many keyframes at most
 };
@@ -35,7 +42,7 @@ class BackendSession {
   Outcome addKeyframe(uint32_t id, double stamp, const Pose3& T_odom_base,
                       const Matrix6d& information, const PointCloud::ConstPtr& cloud);
   /// Walls of keyframe `id` (base frame); buffered when the keyframe has not arrived yet.
-  Outcome addWalls(uint32_t keyframe_id, const std::vector<WallSegment>& walls);
+  Outcome addWalls(uint32_t keyframe_id, const KeyframeWalls& walls);
   /// A loop closure; buffered until both keyframes are known.
   Outcome addLoop(const LoopEdge& edge, const Matrix6d& information);
   /// A mapped room (map frame, wall ids of this backend's landmarks) and the wall-to-wall edges
@@ -84,7 +91,7 @@ class BackendSession {
   Backend backend_;
   MapClouds clouds_;
   PointCloud::Ptr recovered_map_;
-  std::map<uint32_t, std::vector<WallSegment>> pending_walls_;
+  std::map<uint32_t, KeyframeWalls> pending_walls_;
   std::vector<std::pair<LoopEdge, Matrix6d>> pending_loops_;
   std::map<uint32_t, nlohmann::json> journal_rooms_;  // latest version of each room, by id
   uint32_t newest_keyframe_ = 0;

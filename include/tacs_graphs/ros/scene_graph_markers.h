@@ -1,7 +1,8 @@
 // rviz drawing of the scene graph and of traversable graphs (visualization_msgs/MarkerArray).
 //
-// Namespaces (each can be toggled in rviz): keyframes, trajectory, walls, rooms, room_walls,
-// loops, and traversable_graph for the per-keyframe graphs.
+// Namespaces (each can be toggled in rviz): keyframes, trajectory, walls, other_planes (plane
+// landmarks that are no walls: furniture seen over, pillar faces), rooms, room_walls, loops, and
+// traversable_graph for the per-keyframe graphs.
 #pragma once
 
 #include <visualization_msgs/MarkerArray.h>

@@ -33,6 +33,10 @@ struct WallNode {
   double d = 0.0;
   std::array<Eigen::Vector2d, 2> endpoints = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
   std::array<double, 2> z_range = {0.0, 0.0};
+  /// False for a plane landmark that is no wall of the building: a surface the sensor saw over
+  /// (cabinet, shelf, half wall) or one shorter than a wall (pillar face, box side). It still
+  /// constrains the poses and may bound a room.
+  bool is_wall = true;
 };
 
 enum class RoomKind { kRoom, kCorridor };

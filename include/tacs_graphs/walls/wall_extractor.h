@@ -119,6 +119,11 @@ struct WallExtractionConfig {
 struct WallExtractionResult {
   /// Vertical wall segments in the cloud's frame, d >= 0, sorted by decreasing inliers.
   std::vector<WallSegment> walls;
+  /// Vertical surfaces the sensor saw over, so not walls (cabinets, shelves, half walls): runs too
+  /// low for a wall and the stretches cut out of segments as seen over; by decreasing inliers.
+  /// Seen from too close to see over them, the same surfaces come out as walls: a map that
+  /// remembers these can tell (WallMap::addSeenOver).
+  std::vector<WallSegment> seen_over;
   /// Horizontal planes (floor, ceiling, ...), endpoints = xy bounding box, by decreasing inliers.
   std::vector<WallSegment> horizontal;
   /// Points given, points after range cropping and downsampling.

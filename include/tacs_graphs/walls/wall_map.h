@@ -52,6 +52,9 @@ struct WallAssociationConfig {
   /// Landmark planes are the inlier-weighted average of their observations until
   /// updateLandmarkPlane() sets them; with false they keep the plane of their first observation.
   bool average_planes = true;
+  /// Landmarks shorter than this are no walls of the scene graph (m): pillar faces, the sides of
+  /// cabinets and boxes. They stay landmarks (plane factors) and become walls if they grow.
+  double min_wall_length = 1.0;
 
   template <class V>
   void visit(V& v) {
@@ -59,6 +62,7 @@ struct WallAssociationConfig {
     v("max_plane_distance", max_plane_distance);
     v("max_gap", max_gap);
     v("average_planes", average_planes);
+    v("min_wall_length", min_wall_length);
   }
   /// Throws ConfigError naming the field ("walls.association.<field>").
   void validate() const;
@@ -89,6 +93,24 @@ class WallMap {
 
   const std::map<uint32_t, WallLandmark>& landmarks() const { return landmarks_; }
 
+  /// Remembers surfaces the sensor saw over (WallExtractionResult::seen_over, base frame): they
+  /// are gathered apart from the landmarks, associated among themselves with the same gates.
+  void addSeenOver(const std::vector<WallSegment>& observations_in_base, const Pose3& T_map_base);
+
+  /// True when at least half of the landmark's length lies on surfaces seen over (same side, plane
+  /// within half the association distance): a cabinet or a half wall that was observed from too
+  /// close to see over it, not a wall. Unknown ids are false.
+  bool isSeenOver(uint32_t id) const;
+
+  /// True when the landmark is a wall: at least min_wall_length long and not isSeenOver().
+  bool isWall(uint32_t id) const;
+
+  /// The landmarks that are walls (isWall()).
+  std::map<uint32_t, WallLandmark> walls() const;
+
+  /// The surfaces seen over, merged per surface (map frame).
+  const std::vector<WallLandmark>& seenOverSurfaces() const { return seen_over_; }
+
   /// Sets a landmark's plane (after optimisation) and moves its extent onto the new plane. A
   /// normal given with the opposite sign is flipped so the landmark keeps its facing direction.
   /// Unknown ids are ignored.
@@ -103,6 +125,7 @@ class WallMap {
  private:
   WallAssociationConfig config_;
   std::map<uint32_t, WallLandmark> landmarks_;
+  std::vector<WallLandmark> seen_over_;
   uint32_t next_id_ = 0;
 };
 

@@ -21,10 +21,13 @@ void Backend::addKeyframe(uint32_t id, double stamp, const Pose3& T_odom_base,
 }
 
 std::vector<uint32_t> Backend::addWallObservations(uint32_t keyframe_id,
-                                                   const std::vector<WallSegment>& walls) {
+                                                   const std::vector<WallSegment>& walls,
+                                                   const std::vector<WallSegment>& seen_over) {
   std::vector<uint32_t> ids;
   if (!hasKeyframe(keyframe_id)) return ids;
-  const auto associations = wall_map_.associate(walls, graph_.keyframePose(keyframe_id));
+  const Pose3 T_map_base = graph_.keyframePose(keyframe_id);
+  wall_map_.addSeenOver(seen_over, T_map_base);
+  const auto associations = wall_map_.associate(walls, T_map_base);
   for (const auto& a : associations) {
     const WallSegment& obs = walls[a.observation_index];
     if (!graph_.hasWall(a.landmark_id)) {
@@ -99,6 +102,7 @@ SceneGraph Backend::sceneGraph() const {
     w.d = lm.d;
     w.endpoints = {lm.endpoints[0], lm.endpoints[1]};
     w.z_range = {lm.z_min, lm.z_max};
+    w.is_wall = wall_map_.isWall(id);
     g.walls[id] = w;
   }
   g.loops = loops_;

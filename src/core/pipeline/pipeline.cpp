@@ -59,7 +59,7 @@ void Pipeline::processKeyframe(const OdometryResult& odom, ScanOutcome* outcome)
   // Walls (Sec. III-B-1), associated to the backend's landmarks.
   const WallExtractionResult walls = wall_extractor_.extract(cloud, sensor_in_base_);
   stage_times_.add("walls", walls.time_ms);
-  backend_.addWallObservations(id, walls.walls);
+  backend_.addWallObservations(id, walls.walls, walls.seen_over);
   outcome->walls = walls.walls.size();
   stats_.wall_observations += walls.walls.size();
 

@@ -111,7 +111,8 @@ json SceneGraph::toJson() const {
                           {"normal", vec(w.normal)},
                           {"d", w.d},
                           {"endpoints", {vec(w.endpoints[0]), vec(w.endpoints[1])}},
-                          {"z_range", {w.z_range[0], w.z_range[1]}}});
+                          {"z_range", {w.z_range[0], w.z_range[1]}},
+                          {"is_wall", w.is_wall}});
   }
   j["rooms"] = json::array();
   for (const auto& [id, r] : rooms) {
@@ -171,6 +172,12 @@ SceneGraph SceneGraph::fromJson(const json& j) {
     w.endpoints[1] = vector<2>(ends[1], p + ".endpoints[1]");
     const Eigen::Vector2d z = vector<2>(field(walls[i], "z_range", p), p + ".z_range");
     w.z_range = {z[0], z[1]};
+    // Optional: graphs saved before surfaces were told apart hold walls only.
+    if (walls[i].contains("is_wall")) {
+      if (!walls[i]["is_wall"].is_boolean())
+        throw std::runtime_error(p + ".is_wall: expected a boolean");
+      w.is_wall = walls[i]["is_wall"].get<bool>();
+    }
     g.walls[w.id] = w;
   }
   const json& rooms = array(j, "rooms", "");

@@ -45,7 +45,12 @@ void drawSceneGraph(const SceneGraph& graph, const PointCloud* map_points, Canva
     for (const auto& p : room.free_space) canvas->fillCircle(p, 0.12, roomColor(id, 60));
   }
   for (const auto& [id, wall] : graph.walls) {
-    canvas->drawLine(wall.endpoints[0], wall.endpoints[1], {20, 20, 20, 255}, 3.0);
+    // Other planes (furniture seen over, pillar faces) thin and light, under the walls.
+    if (wall.is_wall) {
+      canvas->drawLine(wall.endpoints[0], wall.endpoints[1], {20, 20, 20, 255}, 3.0);
+    } else {
+      canvas->drawLine(wall.endpoints[0], wall.endpoints[1], {120, 120, 120, 255}, 1.0);
+    }
   }
   for (const auto& [id, room] : graph.rooms) {
     const Eigen::Vector2d c = room.center.head<2>();

@@ -234,14 +234,20 @@ void faceViewpoint(const Eigen::Vector3d& viewpoint, bool horizontal_only_z, Pla
   }
 }
 
-// One bounded segment from a run of inliers of a vertical plane, or false when too small.
-bool makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
-                     const WallExtractionConfig& cfg, const View& view, WallSegment* wall) {
-  if (run.size() < static_cast<size_t>(cfg.min_wall_inliers)) return false;
+// What a run of inliers of a vertical plane makes: nothing (too small, not vertical, scattered),
+// a wall, or a surface the sensor saw over (its top stays low while beams pass above it).
+enum class RunKind { kNone, kWall, kLowSurface };
+
+// The bounded segment of a run of inliers and what it is.
+RunKind makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
+                        const WallExtractionConfig& cfg, const View& view, WallSegment* wall) {
+  if (run.size() < static_cast<size_t>(cfg.min_wall_inliers)) return RunKind::kNone;
   Eigen::Vector3d c;
   Plane pl = fitPlane(pts, run, &c);
   // The run's own plane must be vertical too (a model can pass the test thanks to other runs).
-  if (std::abs(pl.n.z()) > std::sin(cfg.vertical_tolerance_deg * M_PI / 180.0)) return false;
+  if (std::abs(pl.n.z()) > std::sin(cfg.vertical_tolerance_deg * M_PI / 180.0)) {
+    return RunKind::kNone;
+  }
   faceViewpoint(view.viewpoint, false, &pl);
   const Eigen::Vector2d axis = wallAxis(pl.n);
   double t_min = std::numeric_limits<double>::infinity(), t_max = -t_min;
@@ -258,9 +264,9 @@ bool makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
       top = i;
     }
   }
-  if (t_max - t_min < cfg.min_wall_length || z_max - z_min < cfg.min_wall_height) return false;
-  const double r_top = (pts[top].head<2>().cast<double>() - view.viewpoint.head<2>()).norm();
-  if (isLowSurface(z_max, r_top, view, cfg)) return false;
+  if (t_max - t_min < cfg.min_wall_length || z_max - z_min < cfg.min_wall_height) {
+    return RunKind::kNone;
+  }
   // Share of the length with inliers: a plane threading through scattered clutter covers little.
   const double bin = std::max(0.1, 2.0 * cfg.voxel_size);
   std::vector<uint8_t> occupied(static_cast<size_t>((t_max - t_min) / bin) + 1, 0);
@@ -271,7 +277,7 @@ bool makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
   size_t filled = 0;
   for (uint8_t o : occupied) filled += o;
   if (static_cast<double>(filled) < cfg.min_coverage * static_cast<double>(occupied.size())) {
-    return false;
+    return RunKind::kNone;
   }
   const Eigen::Vector2d a = c.head<2>() + t_min * axis, b = c.head<2>() + t_max * axis;
   const double z_mid = 0.5 * (z_min + z_max);
@@ -282,7 +288,8 @@ bool makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
   wall->endpoints[1] = projectOntoWallLine(pl.n, pl.d, b, z_mid);
   wall->z_min = z_min;
   wall->z_max = z_max;
-  return true;
+  const double r_top = (pts[top].head<2>().cast<double>() - view.viewpoint.head<2>()).norm();
+  return isLowSurface(z_max, r_top, view, cfg) ? RunKind::kLowSurface : RunKind::kWall;
 }
 
 // Stretches of max_gap along a wall segment, numbered from endpoints[0].
@@ -338,15 +345,21 @@ std::vector<uint8_t> seenOver(const Points& pts, const std::vector<uint32_t>& ru
   return over;
 }
 
-// The wall segments of one run of inliers: the run's segment, or, when stretches of it were seen
-// over, the segments of the pieces between those stretches.
+// Where the segments of one run of inliers go: walls, or surfaces seen over.
+struct RunOutput {
+  std::vector<WallSegment>* walls;
+  std::vector<WallSegment>* seen_over;
+};
+
+// The segments of one run of inliers: the run's segment, or, when stretches of it were seen over,
+// the pieces between those stretches as walls and the stretches as surfaces seen over.
 void appendWalls(const Points& pts, const std::vector<uint32_t>& run,
-                 const WallExtractionConfig& cfg, const View& view,
-                 std::vector<WallSegment>* walls) {
+                 const WallExtractionConfig& cfg, const View& view, const RunOutput& out) {
   WallSegment wall;
-  if (!makeWallSegment(pts, run, cfg, view, &wall)) return;
+  const RunKind kind = makeWallSegment(pts, run, cfg, view, &wall);
+  if (kind == RunKind::kNone) return;
   if (cfg.seen_over_min_points <= 0 || wall.length() <= 0.0) {
-    walls->push_back(wall);
+    if (kind == RunKind::kWall) out.walls->push_back(wall);
     return;
   }
   const Stretches stretches(wall, cfg.max_gap);
@@ -355,20 +368,32 @@ void appendWalls(const Points& pts, const std::vector<uint32_t>& run,
     stretch_of[k] = stretches.of(stretches.along(pts[run[k]].head<2>().cast<double>()));
   }
   const std::vector<uint8_t> over = seenOver(pts, run, stretch_of, wall, stretches, view, cfg);
-  if (std::none_of(over.begin(), over.end(), [](uint8_t o) { return o != 0; })) {
-    walls->push_back(wall);
+  const bool any_over = std::any_of(over.begin(), over.end(), [](uint8_t o) { return o != 0; });
+  // A low surface is reported only when rays were seen over it: the wall under a row of wall
+  // cabinets is low too, but the rays above it end on the cabinets.
+  if (kind == RunKind::kLowSurface) {
+    if (any_over) out.seen_over->push_back(wall);
+    return;
+  }
+  if (!any_over) {
+    out.walls->push_back(wall);
     return;
   }
   std::vector<std::vector<uint32_t>> by_stretch(stretches.count);
   for (size_t k = 0; k < run.size(); ++k) by_stretch[stretch_of[k]].push_back(run[k]);
+  // Consecutive stretches that are all seen over or all not make one piece.
   std::vector<uint32_t> piece;
-  for (size_t k = 0; k <= stretches.count; ++k) {
-    if (k < stretches.count && !over[k]) {
-      piece.insert(piece.end(), by_stretch[k].begin(), by_stretch[k].end());
-      continue;
-    }
+  for (size_t k = 0; k < stretches.count; ++k) {
+    piece.insert(piece.end(), by_stretch[k].begin(), by_stretch[k].end());
+    if (k + 1 < stretches.count && over[k + 1] == over[k]) continue;
     WallSegment w;
-    if (!piece.empty() && makeWallSegment(pts, piece, cfg, view, &w)) walls->push_back(w);
+    const RunKind piece_kind =
+        piece.empty() ? RunKind::kNone : makeWallSegment(pts, piece, cfg, view, &w);
+    if (piece_kind == RunKind::kWall && !over[k]) {
+      out.walls->push_back(w);
+    } else if (piece_kind != RunKind::kNone) {
+      out.seen_over->push_back(w);
+    }
     piece.clear();
   }
 }
@@ -378,8 +403,7 @@ void appendWalls(const Points& pts, const std::vector<uint32_t>& run,
 // plane's floor and ceiling lines (edge_band); those lines cross doorways, so their inliers only
 // join a run they lie within.
 void splitIntoWalls(const Points& pts, const std::vector<uint32_t>& inliers, const Plane& pl,
-                    const WallExtractionConfig& cfg, const View& view,
-                    std::vector<WallSegment>* walls) {
+                    const WallExtractionConfig& cfg, const View& view, const RunOutput& out) {
   float z_lo = std::numeric_limits<float>::infinity(), z_hi = -z_lo;
   for (uint32_t i : inliers) {
     z_lo = std::min(z_lo, pts[i].z());
@@ -408,7 +432,7 @@ void splitIntoWalls(const Points& pts, const std::vector<uint32_t>& inliers, con
     for (; e < edge.size() && edge[e].first <= t1; ++e) {
       if (edge[e].first >= t0) run.push_back(edge[e].second);
     }
-    appendWalls(pts, run, cfg, view, walls);
+    appendWalls(pts, run, cfg, view, out);
     run.clear();
   }
 }
@@ -624,7 +648,7 @@ WallExtractionResult WallExtractor::extract(const PointCloud& cloud_in_base,
     ++result.planes_found;
     const double nz = std::abs(plane.n.z());
     if (nz <= sin_vertical) {
-      splitIntoWalls(pts, inliers, plane, config_, view, &result.walls);
+      splitIntoWalls(pts, inliers, plane, config_, view, {&result.walls, &result.seen_over});
     } else if (nz >= cos_horizontal &&
                inliers.size() >= static_cast<size_t>(config_.min_horizontal_inliers)) {
       result.horizontal.push_back(makeHorizontal(pts, inliers, plane, viewpoint));
@@ -634,6 +658,7 @@ WallExtractionResult WallExtractor::extract(const PointCloud& cloud_in_base,
   result.walls = dropSurfacesOnWalls(std::move(result.walls), config_);
   std::stable_sort(result.walls.begin(), result.walls.end(), byInliers);
   std::stable_sort(result.horizontal.begin(), result.horizontal.end(), byInliers);
+  std::stable_sort(result.seen_over.begin(), result.seen_over.end(), byInliers);
   result.time_ms = watch.elapsedMs();
   return result;
 }

@@ -14,6 +14,7 @@ void WallAssociationConfig::validate() const {
                 p + "max_normal_angle_deg", "must be in (0, 90)");
   requireConfig(max_plane_distance > 0.0, p + "max_plane_distance", "must be > 0");
   requireConfig(max_gap >= 0.0, p + "max_gap", "must be >= 0");
+  requireConfig(min_wall_length >= 0.0, p + "min_wall_length", "must be >= 0");
 }
 
 namespace {
@@ -65,6 +66,24 @@ double matchDistance(const WallLandmark& a, const WallLandmark& b,
   return dist;
 }
 
+// The candidate closest to `obs` (plane distance) among those passing the association gates, or
+// null. `landmark_of` gives the landmark of an element of `candidates`.
+template <class Candidates, class LandmarkOf>
+WallLandmark* closestMatch(Candidates& candidates, LandmarkOf landmark_of, const WallLandmark& obs,
+                           const WallAssociationConfig& cfg) {
+  WallLandmark* best = nullptr;
+  double best_dist = std::numeric_limits<double>::infinity();
+  for (auto& candidate : candidates) {
+    WallLandmark& lm = landmark_of(candidate);
+    const double dist = matchDistance(lm, obs, cfg);
+    if (dist >= 0.0 && dist < best_dist) {
+      best_dist = dist;
+      best = &lm;
+    }
+  }
+  return best;
+}
+
 // Folds `other` into `target`: plane average (if enabled), extent and height union, counts.
 void absorb(const WallLandmark& other, bool average_plane, WallLandmark* target) {
   std::vector<Eigen::Vector2d> ends = {target->endpoints[0], target->endpoints[1],
@@ -110,15 +129,8 @@ std::vector<WallMap::Association> WallMap::associate(
   for (size_t i = 0; i < observations_in_base.size(); ++i) {
     const WallLandmark obs =
         landmarkFromObservation(transformWall(observations_in_base[i], T_map_base));
-    WallLandmark* best = nullptr;
-    double best_dist = std::numeric_limits<double>::infinity();
-    for (auto& [id, lm] : landmarks_) {
-      const double dist = matchDistance(lm, obs, config_);
-      if (dist >= 0.0 && dist < best_dist) {
-        best_dist = dist;
-        best = &lm;
-      }
-    }
+    WallLandmark* best = closestMatch(
+        landmarks_, [](auto& entry) -> WallLandmark& { return entry.second; }, obs, config_);
     if (best) {
       absorb(obs, config_.average_planes, best);
       out.push_back({static_cast<int>(i), best->id, false});
@@ -128,6 +140,61 @@ std::vector<WallMap::Association> WallMap::associate(
       landmarks_.emplace(created.id, created);
       out.push_back({static_cast<int>(i), created.id, true});
     }
+  }
+  return out;
+}
+
+void WallMap::addSeenOver(const std::vector<WallSegment>& observations_in_base,
+                          const Pose3& T_map_base) {
+  for (const WallSegment& observation : observations_in_base) {
+    const WallLandmark obs = landmarkFromObservation(transformWall(observation, T_map_base));
+    WallLandmark* best = closestMatch(
+        seen_over_, [](WallLandmark& s) -> WallLandmark& { return s; }, obs, config_);
+    if (best) {
+      absorb(obs, config_.average_planes, best);
+    } else {
+      seen_over_.push_back(obs);
+    }
+  }
+}
+
+bool WallMap::isSeenOver(uint32_t id) const {
+  const auto it = landmarks_.find(id);
+  if (it == landmarks_.end() || seen_over_.empty()) return false;
+  const WallLandmark& lm = it->second;
+  const Eigen::Vector2d axis = wallAxis(lm.normal);
+  const double l0 = axis.dot(lm.endpoints[0]), l1 = axis.dot(lm.endpoints[1]);
+  if (l1 <= l0) return false;
+  // Half the association distance: a surface seen over in front of a wall (a low cabinet against
+  // it) is further from the wall's plane than that, the same cabinet seen twice is not.
+  const double max_dist = 0.5 * config_.max_plane_distance;
+  const double min_cos = std::cos(config_.max_normal_angle_deg * M_PI / 180.0);
+  std::vector<std::pair<double, double>> covered;
+  for (const WallLandmark& s : seen_over_) {
+    if (s.normal.dot(lm.normal) < min_cos || planeGap(lm, s) > max_dist) continue;
+    const double s0 = std::max(l0, std::min(axis.dot(s.endpoints[0]), axis.dot(s.endpoints[1])));
+    const double s1 = std::min(l1, std::max(axis.dot(s.endpoints[0]), axis.dot(s.endpoints[1])));
+    if (s1 > s0) covered.emplace_back(s0, s1);
+  }
+  std::sort(covered.begin(), covered.end());
+  double length = 0.0, end = l0;
+  for (const auto& [s0, s1] : covered) {
+    length += std::max(0.0, s1 - std::max(s0, end));
+    end = std::max(end, s1);
+  }
+  return length >= 0.5 * (l1 - l0);
+}
+
+bool WallMap::isWall(uint32_t id) const {
+  const auto it = landmarks_.find(id);
+  return it != landmarks_.end() && it->second.length() >= config_.min_wall_length &&
+         !isSeenOver(id);
+}
+
+std::map<uint32_t, WallLandmark> WallMap::walls() const {
+  std::map<uint32_t, WallLandmark> out;
+  for (const auto& [id, lm] : landmarks_) {
+    if (isWall(id)) out.emplace_hint(out.end(), id, lm);
   }
   return out;
 }
