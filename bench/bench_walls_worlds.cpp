@@ -19,11 +19,10 @@
 // the keyframes; "P <= 10 m" counts only detections within the visible range, where the ground
 // truth is defined; "P any" also accepts a match with any vertical surface of the world (half
 // walls, rails, pit walls, box sides, faces out of range or barely seen). After the run, the walls
-// of the map are counted against the faces ever visible ("on those faces": walls that match one
-// of them; the others sit on furniture, pillars, half walls, ...) and against the wall sides
-// ever visible (a face cut by a partition is one side: the map holds one plane along it, which
-// bounds the rooms on both sides of the partition); "held twice" counts faces matched by two or
-// more walls, "stray" walls that match no surface of the world.
+// of the map (WallMap::walls()) are counted against the faces ever visible ("on those faces":
+// walls that match one of them; the others sit on furniture, pillars, half walls, ...); "held
+// twice" counts faces matched by two or more walls, "stray" walls that match no surface of the
+// world. Target: walls within 10 % of the faces ever visible, none held twice.
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -60,7 +59,6 @@ struct Face {
   Eigen::Vector2d n, a, b;
   double d, z_min, z_max;
   bool ground_truth;  // full height and long enough
-  int side = -1;      // the wall box side it was cut from (2 per wall); -1 for box faces
   double length() const { return (b - a).norm(); }
 };
 
@@ -119,7 +117,6 @@ void appendWallFaces(const tacs::sim::World& world, std::vector<Face>* faces) {
           // The wall counts by its length; a piece of it too short to be seen does not.
           f.ground_truth =
               w.z_max >= kMinWallTop && length > kMinFaceLength && f.length() >= kMinFaceSpan;
-          f.side = static_cast<int>(2 * i) + (side > 0.0 ? 0 : 1);
           faces->push_back(f);
         }
         start = std::max(start, t1);
@@ -219,8 +216,7 @@ struct WorldScore {
   size_t near_detections = 0, near_true_positives = 0;      // ... within the visible range
   size_t misses[kMissKinds] = {};                           // detections that are no TP, by kind
   size_t visible = 0, found = 0;                            // per-keyframe visible faces
-  size_t ever_visible = 0, sides_visible = 0, landmarks = 0, on_faces = 0, held = 0, held_twice = 0,
-         stray = 0;
+  size_t ever_visible = 0, landmarks = 0, on_faces = 0, held = 0, held_twice = 0, stray = 0;
   std::vector<double> ms;
 };
 
@@ -326,12 +322,6 @@ WorldScore runWorld(const std::string& path, const tacs::bench::WorldsArgs& args
           lm.endpoints[1].x(), lm.endpoints[1].y());
     }
   }
-  std::vector<int> sides;
-  for (size_t k = 0; k < faces.size(); ++k) {
-    if (ever_visible[k]) sides.push_back(faces[k].side);
-  }
-  std::sort(sides.begin(), sides.end());
-  score.sides_visible = std::unique(sides.begin(), sides.end()) - sides.begin();
   for (size_t k = 0; k < faces.size(); ++k) {
     score.ever_visible += ever_visible[k];
     score.held += holders[k] >= 1;
@@ -358,9 +348,9 @@ int main(int argc, char** argv) {
   std::printf(
       "Walls on the simulated worlds, keyframe every %.1f m, ground-truth poses; load %s\n\n"
       "| world | kf | detections | P | P <= %.0f m | P any | visible faces | R "
-      "| faces ever visible | wall sides | walls | on those faces | faces held | held twice "
+      "| faces ever visible | walls | on those faces | faces held | held twice "
       "| stray walls | extract ms |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
       kKeyframeDistance, tacs::bench::loadAverage().c_str(), kVisibleRange);
   std::vector<std::pair<std::string, WorldScore>> scores;
   for (const auto& path : tacs::bench::worldPaths(&args)) {
@@ -369,13 +359,13 @@ int main(int argc, char** argv) {
       scores.emplace_back(std::filesystem::path(path).stem().string(), s);
       std::printf(
           "| %-17s | %4zu | %5zu | %5.3f | %5.3f | %5.3f | %5zu | %5.3f | %3zu | %3zu | %3zu | "
-          "%3zu | %3zu | %2zu | %2zu | %5.1f |\n",
+          "%3zu | %2zu | %2zu | %5.1f |\n",
           scores.back().first.c_str(), s.keyframes, s.detections,
           tacs::bench::ratio(s.true_positives, s.detections),
           tacs::bench::ratio(s.near_true_positives, s.near_detections),
           tacs::bench::ratio(s.any_face, s.detections), s.visible,
-          tacs::bench::ratio(s.found, s.visible), s.ever_visible, s.sides_visible, s.landmarks,
-          s.on_faces, s.held, s.held_twice, s.stray, tacs::bench::meanOf(s.ms));
+          tacs::bench::ratio(s.found, s.visible), s.ever_visible, s.landmarks, s.on_faces, s.held,
+          s.held_twice, s.stray, tacs::bench::meanOf(s.ms));
       std::fflush(stdout);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "%s: %s\n", path.c_str(), e.what());

@@ -116,6 +116,28 @@ TEST(WallMap, CollinearWallsBeyondTheGapStayApartAndBridgedPiecesMerge) {
   EXPECT_EQ(kept.observations, 3u);
 }
 
+// The wall y = 3 seen in two pieces 0.3 m apart (within max_gap), after `first` was mapped.
+size_t landmarksAfterTwoPieces(const std::vector<WallSegment>& first) {
+  WallMap map;
+  const Pose3 I = Pose3::Identity();
+  map.associate(first, I);
+  map.associate({observation({-3, 3}, {-0.15, 3}, 200)}, I);
+  map.associate({observation({0.15, 3}, {3, 3}, 200)}, I);
+  map.mergeDuplicates();
+  return map.landmarks().size();
+}
+
+TEST(WallMap, APartitionMeetingAWallKeepsItsTwoSidesApart) {
+  // Alone, the pieces are one wall.
+  EXPECT_EQ(landmarksAfterTwoPieces({}), 1u);
+  // A partition (x = -0.08, 2.5 m long) meets the wall in the gap: the pieces are the walls of
+  // two rooms, also for mergeDuplicates().
+  EXPECT_EQ(landmarksAfterTwoPieces({observation({-0.08, 2.95}, {-0.08, 0.45}, 200)}), 3u);
+  // A box side (0.5 m) against the wall is no partition, nor is a wall behind the line.
+  EXPECT_EQ(landmarksAfterTwoPieces({observation({-0.08, 2.95}, {-0.08, 2.45}, 60)}), 2u);
+  EXPECT_EQ(landmarksAfterTwoPieces({observation({-0.08, 3.3}, {-0.08, 6}, 200)}), 2u);
+}
+
 TEST(WallMap, MergeChainsReportSurvivingIds) {
   WallAssociationConfig cfg;
   cfg.max_gap = 0.5;

@@ -2,7 +2,8 @@
 //
 // An observation (a WallSegment in the base frame) is moved to the map with the keyframe pose and
 // matched to the landmark on the same side of the same plane whose extent it overlaps or nearly
-// touches along the wall; otherwise it starts a new landmark. Matched landmarks grow their extent.
+// touches along the wall, unless a partition meets the wall between them (then they are the walls
+// of two rooms); otherwise it starts a new landmark. Matched landmarks grow their extent.
 // Because extents grow, two landmarks can come to describe one wall (a wall first seen in two
 // pieces); mergeDuplicates() folds them and reports which id went into which, so the backend can
 // move the removed landmark's factors to the kept one.
@@ -123,6 +124,11 @@ class WallMap {
   void setLandmarks(std::map<uint32_t, WallLandmark> landmarks);
 
  private:
+  /// True when a wall (a landmark at least min_wall_length long, across the line) meets the line
+  /// of a and b in the gap between their extents: a partition at a T junction, whose two sides
+  /// are two rooms. Such pieces stay two landmarks however narrow the partition.
+  bool separatedByAWall(const WallLandmark& a, const WallLandmark& b) const;
+
   WallAssociationConfig config_;
   std::map<uint32_t, WallLandmark> landmarks_;
   std::vector<WallLandmark> seen_over_;

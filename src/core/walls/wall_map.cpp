@@ -68,15 +68,16 @@ double matchDistance(const WallLandmark& a, const WallLandmark& b,
 
 // The candidate closest to `obs` (plane distance) among those passing the association gates, or
 // null. `landmark_of` gives the landmark of an element of `candidates`.
-template <class Candidates, class LandmarkOf>
+// `separated(lm, obs)` vetoes a candidate.
+template <class Candidates, class LandmarkOf, class Separated>
 WallLandmark* closestMatch(Candidates& candidates, LandmarkOf landmark_of, const WallLandmark& obs,
-                           const WallAssociationConfig& cfg) {
+                           const WallAssociationConfig& cfg, Separated separated) {
   WallLandmark* best = nullptr;
   double best_dist = std::numeric_limits<double>::infinity();
   for (auto& candidate : candidates) {
     WallLandmark& lm = landmark_of(candidate);
     const double dist = matchDistance(lm, obs, cfg);
-    if (dist >= 0.0 && dist < best_dist) {
+    if (dist >= 0.0 && dist < best_dist && !separated(lm, obs)) {
       best_dist = dist;
       best = &lm;
     }
@@ -130,7 +131,8 @@ std::vector<WallMap::Association> WallMap::associate(
     const WallLandmark obs =
         landmarkFromObservation(transformWall(observations_in_base[i], T_map_base));
     WallLandmark* best = closestMatch(
-        landmarks_, [](auto& entry) -> WallLandmark& { return entry.second; }, obs, config_);
+        landmarks_, [](auto& entry) -> WallLandmark& { return entry.second; }, obs, config_,
+        [this](const WallLandmark& a, const WallLandmark& b) { return separatedByAWall(a, b); });
     if (best) {
       absorb(obs, config_.average_planes, best);
       out.push_back({static_cast<int>(i), best->id, false});
@@ -149,7 +151,8 @@ void WallMap::addSeenOver(const std::vector<WallSegment>& observations_in_base,
   for (const WallSegment& observation : observations_in_base) {
     const WallLandmark obs = landmarkFromObservation(transformWall(observation, T_map_base));
     WallLandmark* best = closestMatch(
-        seen_over_, [](WallLandmark& s) -> WallLandmark& { return s; }, obs, config_);
+        seen_over_, [](WallLandmark& s) -> WallLandmark& { return s; }, obs, config_,
+        [](const WallLandmark&, const WallLandmark&) { return false; });
     if (best) {
       absorb(obs, config_.average_planes, best);
     } else {
@@ -199,12 +202,45 @@ std::map<uint32_t, WallLandmark> WallMap::walls() const {
   return out;
 }
 
+bool WallMap::separatedByAWall(const WallLandmark& a, const WallLandmark& b) const {
+  if (config_.max_gap <= 0.0) return false;
+  const Eigen::Vector2d axis = wallAxis(a.normal);
+  const double a0 = std::min(axis.dot(a.endpoints[0]), axis.dot(a.endpoints[1]));
+  const double a1 = std::max(axis.dot(a.endpoints[0]), axis.dot(a.endpoints[1]));
+  const double b0 = std::min(axis.dot(b.endpoints[0]), axis.dot(b.endpoints[1]));
+  const double b1 = std::max(axis.dot(b.endpoints[0]), axis.dot(b.endpoints[1]));
+  const double gap_lo = b0 >= a1 ? a1 : b1, gap_hi = b0 >= a1 ? b0 : a0;
+  if (gap_hi <= gap_lo) return false;  // the extents overlap
+  // A wall meets the line from the front (the side both faces face) with one of its ends in the
+  // gap; its own extent stops short of the line by about as much as the two pieces do.
+  constexpr double kSlack = 0.1;  // [m]
+  const double cos_45 = std::sqrt(0.5);
+  for (const auto& [id, lm] : landmarks_) {
+    if (&lm == &a || &lm == &b || std::abs(lm.normal.dot(a.normal)) > cos_45 ||
+        lm.length() < config_.min_wall_length) {
+      continue;
+    }
+    for (const Eigen::Vector2d& p : lm.endpoints) {
+      const double in_front = planeDistance(a.normal, a.d, p, midHeight(a));
+      const double t = axis.dot(p);
+      if (in_front >= -kSlack && in_front <= config_.max_gap && t >= gap_lo - kSlack &&
+          t <= gap_hi + kSlack) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 std::vector<std::pair<uint32_t, uint32_t>> WallMap::mergeDuplicates() {
   // The first pair of landmarks that pass the association gates, or false.
   auto findPair = [this](uint32_t* a_id, uint32_t* b_id) {
     for (auto a = landmarks_.begin(); a != landmarks_.end(); ++a) {
       for (auto b = std::next(a); b != landmarks_.end(); ++b) {
-        if (matchDistance(a->second, b->second, config_) < 0.0) continue;
+        if (matchDistance(a->second, b->second, config_) < 0.0 ||
+            separatedByAWall(a->second, b->second)) {
+          continue;
+        }
         *a_id = a->first;
         *b_id = b->first;
         return true;
