@@ -172,6 +172,26 @@ TEST(RoomsMerging, MappedRoomsMergeWhenOneComesToLieInsideTheOther) {
   EXPECT_EQ(map.rooms().size(), 2u);
 }
 
+TEST(RoomsMerging, AViewSpanningTwoRoomsAWallSeparatesIsToldApart) {
+  // A corridor (y 0..2) and a room beside it (y 2.2..10) with their wall y = 2.1 between them
+  // (a door in it further along); a view holding both is no room of its own.
+  RoomMap map;
+  map.addObservation(xCorridor(0, 20, 0, 2, 3, 4), kNoWalls);
+  map.addObservation(xCorridor(4, 12, 2.2, 10, 5, 6), kNoWalls);
+  WallLandmark between;
+  between.id = 9;
+  between.normal = Eigen::Vector3d(0, -1, 0);
+  between.d = 2.1;
+  between.endpoints[0] = {0.0, 2.1};
+  between.endpoints[1] = {16.0, 2.1};
+  const std::map<uint32_t, WallLandmark> walls = {{9, between}};
+  const RoomObservation both = xCorridor(0, 20, 0, 10, 3, 6);
+  EXPECT_TRUE(map.spansSeparateRooms(both, walls));
+  // Without the wall the two are views of one hall; a view of one of them is no problem.
+  EXPECT_FALSE(map.spansSeparateRooms(both, kNoWalls));
+  EXPECT_FALSE(map.spansSeparateRooms(xCorridor(0, 20, 0, 2.5, 3, 4), walls));
+}
+
 TEST(RoomsMerging, CorridorReDetectedAsRoomBecomesARoom) {
   RoomMap map;
   const auto first = map.addObservation(yCorridor(0, 4, 0, 4, 1, 2), kNoWalls);

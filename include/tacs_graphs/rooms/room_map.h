@@ -78,6 +78,13 @@ class RoomMap {
   void refreshWalls(const std::map<uint32_t, WallLandmark>& landmarks);
 
   const std::map<uint32_t, MappedRoom>& rooms() const { return rooms_; }
+
+  /// True when two mapped rooms with a wall between their centres both lie inside the
+  /// observation's free space (nested_overlap of each): a region that ran through a doorway
+  /// unnoticed, which merging would fold into one room.
+  bool spansSeparateRooms(const RoomObservation& observation,
+                          const std::map<uint32_t, WallLandmark>& landmarks) const;
+
   /// Centre distance between two rooms along the axes both define (the axes orthogonal to their
   /// wall pairs); negative when they share no axis.
   static double axisDistance(const RoomObservation& a, const RoomObservation& b);

@@ -222,6 +222,27 @@ RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
   return out;
 }
 
+bool RoomMap::spansSeparateRooms(const RoomObservation& observation,
+                                 const std::map<uint32_t, WallLandmark>& landmarks) const {
+  const auto obs_cells = cellsOf(observation.free_space);
+  std::vector<const MappedRoom*> inside;
+  for (const auto& [id, m] : rooms_) {
+    if (!m.cells.empty() && m.cells.size() <= obs_cells.size() &&
+        smallerShare(obs_cells, m.cells) >= config_.nested_overlap) {
+      inside.push_back(&m);
+    }
+  }
+  for (size_t i = 0; i < inside.size(); ++i) {
+    for (size_t j = i + 1; j < inside.size(); ++j) {
+      if (wallBetween(inside[i]->room.center.head<2>(), inside[j]->room.center.head<2>(),
+                      landmarks)) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 void RoomMap::absorbNestedRooms(const std::map<uint32_t, WallLandmark>& landmarks,
                                 RoomAssociation* out) {
   for (bool merged = true; merged;) {

@@ -36,10 +36,17 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
     return;
   }
   RoomExtractionResult extracted = extractRoom(points, walls.landmarks(), axes, config_.extraction);
+  // A TACS region that ran through a doorway unnoticed holds two mapped rooms a wall separates;
+  // merging would fold them into one.
+  const auto spans_rooms = [&](const RoomExtractionResult& r) {
+    return config_.method == "tacs" && r.found &&
+           room_map_.spansSeparateRooms(r.room, walls.landmarks());
+  };
   const double radius = config_.tacs.path_retry_radius;
-  if (!extracted.found && radius > 0.0 && !path.empty()) {
+  if ((!extracted.found || spans_rooms(extracted)) && radius > 0.0 && !path.empty()) {
     // A region around a corner of two corridors lies half in each: no facing pair holds most of
-    // it. The free space near the robot's path is the corridor it drove along.
+    // it. The free space near the robot's path is the corridor it drove along (also the part of
+    // a region spanning two rooms that the robot drove through).
     std::vector<Eigen::Vector3d> near;
     for (const auto& p : points) {
       const bool close = std::any_of(path.begin(), path.end(), [&](const Eigen::Vector3d& q) {
@@ -49,11 +56,15 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
     }
     if (near.size() < points.size()) {
       RoomExtractionResult retried = extractRoom(near, walls.landmarks(), axes, config_.extraction);
-      if (retried.found) extracted = std::move(retried);
+      if (retried.found && !spans_rooms(retried)) extracted = std::move(retried);
     }
   }
   if (!extracted.found) {
     result->rejected.push_back(extracted.reason);
+    return;
+  }
+  if (spans_rooms(extracted)) {
+    result->rejected.push_back("region spans mapped rooms a wall separates (a missed doorway)");
     return;
   }
   extracted.room.keyframe_ids = std::move(keyframe_ids);
