@@ -191,6 +191,33 @@ TEST(WallMap, ALandmarkOnASurfaceSeenOverIsNoWall) {
   EXPECT_TRUE(map.walls().empty());
 }
 
+// A segment on x = `x` (y 0..2.5) facing +x, away from the origin.
+WallSegment facingAway(double x) {
+  WallSegment w = observation({x, 0}, {x, 2.5}, 100);
+  w.normal = Eigen::Vector3d(1, 0, 0);
+  w.d = -x;
+  return w;
+}
+
+TEST(WallMap, TheFrontOfACabinetSeenOverFromBehindIsNoWall) {
+  const Pose3 I = Pose3::Identity();
+  const WallSegment front = observation({4, 0}, {4, 2.5}, 100);  // x = 4, facing the origin
+  // A free-standing cabinet 0.6 m deep whose back (x = 4.6) was seen over from the far side.
+  WallMap slab;
+  slab.addSeenOver({facingAway(4.6)}, I);
+  EXPECT_TRUE(slab.isSeenOver(slab.associate({front}, I)[0].landmark_id));
+  // A wall 0.15 m thick with a low cabinet in the next room: that room's face of the wall stands
+  // between, so the cabinet front is not the back of this wall.
+  WallMap wall;
+  wall.associate({facingAway(4.15)}, I);
+  wall.addSeenOver({facingAway(4.6)}, I);
+  EXPECT_FALSE(wall.isSeenOver(wall.associate({front}, I)[0].landmark_id));
+  // Too far behind to be one object.
+  WallMap apart;
+  apart.addSeenOver({facingAway(5.5)}, I);
+  EXPECT_FALSE(apart.isSeenOver(apart.associate({front}, I)[0].landmark_id));
+}
+
 TEST(WallMap, LandmarksShorterThanAWallAreNoWallsUntilTheyGrow) {
   WallAssociationConfig config;
   config.min_wall_length = 1.0;

@@ -98,9 +98,11 @@ class WallMap {
   /// are gathered apart from the landmarks, associated among themselves with the same gates.
   void addSeenOver(const std::vector<WallSegment>& observations_in_base, const Pose3& T_map_base);
 
-  /// True when at least half of the landmark's length lies on surfaces seen over (same side, plane
-  /// within half the association distance): a cabinet or a half wall that was observed from too
-  /// close to see over it, not a wall. Unknown ids are false.
+  /// True when at least half of the landmark's length lies on surfaces seen over: on the same side
+  /// with the plane within half the association distance (a cabinet or a half wall observed from
+  /// too close to see over it), or facing away up to 1 m behind it with no other wall's face
+  /// between (the back of a free-standing cabinet seen over from the far side). Not a wall.
+  /// Unknown ids are false.
   bool isSeenOver(uint32_t id) const;
 
   /// True when the landmark is a wall: at least min_wall_length long and not isSeenOver().

@@ -172,9 +172,30 @@ bool WallMap::isSeenOver(uint32_t id) const {
   // it) is further from the wall's plane than that, the same cabinet seen twice is not.
   const double max_dist = 0.5 * config_.max_plane_distance;
   const double min_cos = std::cos(config_.max_normal_angle_deg * M_PI / 180.0);
+  // How far behind the landmark's face a point lies (m).
+  const auto depth = [&](const WallLandmark& w) {
+    return -planeDistance(lm.normal, lm.d, w.midpoint(), midHeight(w));
+  };
+  // The back of a free-standing cabinet or partition seen over from the other side: a surface
+  // facing away, at most kMaxSlab behind, with no face of another wall between the two (a low
+  // cabinet in the next room stands in front of that room's face of the wall).
+  constexpr double kMaxSlab = 1.0;  // [m]
+  const auto back_of_slab = [&](const WallLandmark& s) {
+    const double d = depth(s);
+    if (s.normal.dot(lm.normal) > -min_cos || d <= 0.0 || d > kMaxSlab) return false;
+    for (const auto& [other_id, w] : landmarks_) {
+      const double dw = depth(w);
+      if (other_id != id && w.normal.dot(s.normal) >= min_cos && dw > 0.0 && dw < d - max_dist &&
+          extentGap(lm, w) < 0.0) {
+        return false;
+      }
+    }
+    return true;
+  };
   std::vector<std::pair<double, double>> covered;
   for (const WallLandmark& s : seen_over_) {
-    if (s.normal.dot(lm.normal) < min_cos || planeGap(lm, s) > max_dist) continue;
+    const bool same_face = s.normal.dot(lm.normal) >= min_cos && planeGap(lm, s) <= max_dist;
+    if (!same_face && !back_of_slab(s)) continue;
     const double s0 = std::max(l0, std::min(axis.dot(s.endpoints[0]), axis.dot(s.endpoints[1])));
     const double s1 = std::min(l1, std::max(axis.dot(s.endpoints[0]), axis.dot(s.endpoints[1])));
     if (s1 > s0) covered.emplace_back(s0, s1);
