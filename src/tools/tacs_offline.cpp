@@ -2,7 +2,6 @@
 // on a simulated world streamed in-process, and writes the run folder of DESIGN.md.
 #include <pcl/common/transforms.h>
 
-#include <algorithm>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -238,8 +237,7 @@ int run(const Options& o) {
   source->writeGroundTruth(o.out);
   const tacs::PipelineStats& stats = pipeline.stats();
   const tacs::SceneGraph graph = pipeline.sceneGraph();
-  const size_t walls = static_cast<size_t>(std::count_if(
-      graph.walls.begin(), graph.walls.end(), [](const auto& w) { return w.second.is_wall; }));
+  const size_t walls = graph.wallCount();
   std::cout << std::fixed << std::setprecision(2) << "[tacs_offline] " << stats.scans << " scans ("
             << stats.rejected_scans << " rejected), " << stats.keyframes << " keyframes, " << walls
             << " walls (+" << graph.walls.size() - walls << " other planes), " << graph.rooms.size()

@@ -58,6 +58,7 @@ TEST(SceneGraph, JsonRoundTripIsExact) {
   EXPECT_EQ(back.walls.at(7).d, g.walls.at(7).d);
   EXPECT_TRUE(back.walls.at(7).is_wall);
   EXPECT_FALSE(back.walls.at(9).is_wall);
+  EXPECT_EQ(back.wallCount(), 1u);
   // Graphs saved without the flag hold walls only; a flag of the wrong type names the field.
   nlohmann::json old = j;
   old["walls"][1].erase("is_wall");

@@ -68,6 +68,9 @@ struct SceneGraph {
   std::map<uint32_t, RoomNode> rooms;
   std::vector<LoopEdge> loops;
 
+  /// Wall nodes that are walls of the building (WallNode::is_wall), not other planes.
+  size_t wallCount() const;
+
   nlohmann::json toJson() const;
   /// Throws std::runtime_error naming the bad field ("rooms[2].kind: ...").
   static SceneGraph fromJson(const nlohmann::json& j);

@@ -1,6 +1,5 @@
 #include "tacs_graphs/eval/experiment.h"
 
-#include <algorithm>
 #include <fstream>
 
 #include "tacs_graphs/common/config.h"
@@ -66,8 +65,7 @@ RunScores scoreRunFolder(const std::string& dir) {
   s.t_fgo_s = timing.value("t_fgo_s", 0.0);
   s.t_ld_s = timing.value("t_ld_s", 0.0);
   s.graph = SceneGraph::load(dir + "/scene_graph.json");
-  s.walls = static_cast<size_t>(std::count_if(s.graph.walls.begin(), s.graph.walls.end(),
-                                              [](const auto& w) { return w.second.is_wall; }));
+  s.walls = s.graph.wallCount();
   s.rooms = s.graph.rooms.size();
   const Trajectory gt = readTum(dir + "/ground_truth_tum.txt");
   const Trajectory keyframes = readTum(dir + "/trajectory_tum.txt");

@@ -1,5 +1,6 @@
 #include "tacs_graphs/scene_graph/scene_graph.h"
 
+#include <algorithm>
 #include <fstream>
 #include <stdexcept>
 
@@ -92,6 +93,11 @@ Pose3 LoopEdge::relativePose() const {
 }
 
 const char* roomKindName(RoomKind kind) { return kind == RoomKind::kRoom ? "room" : "corridor"; }
+
+size_t SceneGraph::wallCount() const {
+  return static_cast<size_t>(
+      std::count_if(walls.begin(), walls.end(), [](const auto& w) { return w.second.is_wall; }));
+}
 
 json SceneGraph::toJson() const {
   json j;

@@ -49,12 +49,18 @@ double planeGap(const WallLandmark& a, const WallLandmark& b) {
                 std::abs(planeDistance(b.normal, b.d, a.midpoint(), midHeight(a))));
 }
 
+// The extent of w along `axis` as (low, high) (m).
+std::pair<double, double> extentOn(const Eigen::Vector2d& axis, const WallLandmark& w) {
+  const double t0 = axis.dot(w.endpoints[0]), t1 = axis.dot(w.endpoints[1]);
+  return {std::min(t0, t1), std::max(t0, t1)};
+}
+
 // Gap between the extents along a's wall axis (m); negative when they overlap.
 double extentGap(const WallLandmark& a, const WallLandmark& b) {
   const Eigen::Vector2d axis = wallAxis(a.normal);
-  const double a0 = axis.dot(a.endpoints[0]), a1 = axis.dot(a.endpoints[1]);
-  const double b0 = axis.dot(b.endpoints[0]), b1 = axis.dot(b.endpoints[1]);
-  return std::max(std::min(b0, b1) - std::max(a0, a1), std::min(a0, a1) - std::max(b0, b1));
+  const auto [a0, a1] = extentOn(axis, a);
+  const auto [b0, b1] = extentOn(axis, b);
+  return std::max(b0 - a1, a0 - b1);
 }
 
 // Plane distance when a and b pass the association gates, or a negative value.
@@ -166,7 +172,7 @@ bool WallMap::isSeenOver(uint32_t id) const {
   if (it == landmarks_.end() || seen_over_.empty()) return false;
   const WallLandmark& lm = it->second;
   const Eigen::Vector2d axis = wallAxis(lm.normal);
-  const double l0 = axis.dot(lm.endpoints[0]), l1 = axis.dot(lm.endpoints[1]);
+  const auto [l0, l1] = extentOn(axis, lm);
   if (l1 <= l0) return false;
   // Half the association distance: a surface seen over in front of a wall (a low cabinet against
   // it) is further from the wall's plane than that, the same cabinet seen twice is not.
@@ -196,8 +202,8 @@ bool WallMap::isSeenOver(uint32_t id) const {
   for (const WallLandmark& s : seen_over_) {
     const bool same_face = s.normal.dot(lm.normal) >= min_cos && planeGap(lm, s) <= max_dist;
     if (!same_face && !back_of_slab(s)) continue;
-    const double s0 = std::max(l0, std::min(axis.dot(s.endpoints[0]), axis.dot(s.endpoints[1])));
-    const double s1 = std::min(l1, std::max(axis.dot(s.endpoints[0]), axis.dot(s.endpoints[1])));
+    const auto [s_lo, s_hi] = extentOn(axis, s);
+    const double s0 = std::max(l0, s_lo), s1 = std::min(l1, s_hi);
     if (s1 > s0) covered.emplace_back(s0, s1);
   }
   std::sort(covered.begin(), covered.end());
@@ -226,10 +232,8 @@ std::map<uint32_t, WallLandmark> WallMap::walls() const {
 bool WallMap::separatedByAWall(const WallLandmark& a, const WallLandmark& b) const {
   if (config_.max_gap <= 0.0) return false;
   const Eigen::Vector2d axis = wallAxis(a.normal);
-  const double a0 = std::min(axis.dot(a.endpoints[0]), axis.dot(a.endpoints[1]));
-  const double a1 = std::max(axis.dot(a.endpoints[0]), axis.dot(a.endpoints[1]));
-  const double b0 = std::min(axis.dot(b.endpoints[0]), axis.dot(b.endpoints[1]));
-  const double b1 = std::max(axis.dot(b.endpoints[0]), axis.dot(b.endpoints[1]));
+  const auto [a0, a1] = extentOn(axis, a);
+  const auto [b0, b1] = extentOn(axis, b);
   const double gap_lo = b0 >= a1 ? a1 : b1, gap_hi = b0 >= a1 ? b0 : a0;
   if (gap_hi <= gap_lo) return false;  // the extents overlap
   // A wall meets the line from the front (the side both faces face) with one of its ends in the
