@@ -42,7 +42,8 @@ BagScanSource::BagScanSource(const std::string& path, const std::string& topic) 
 
 bool BagScanSource::next(Scan* scan) {
   if (it_ == view_->end()) return false;
-  const rosbag::MessageInstance& m = *it_;
+  // The iterator owns the instance it dereferences to and replaces it when it advances: copy it.
+  const rosbag::MessageInstance m = *it_;
   ++it_;
   scan->cloud.clear();
   const auto msg = m.instantiate<sensor_msgs::PointCloud2>();

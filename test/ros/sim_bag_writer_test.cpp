@@ -6,6 +6,8 @@
 #include <sensor_msgs/point_cloud2_iterator.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include "tacs_graphs/ros/bag_scan_source.h"
+
 namespace tacs {
 namespace {
 
@@ -59,6 +61,32 @@ TEST(SimBagWriter, WritesCloudTfAndGroundTruth) {
   EXPECT_EQ(clouds, 2);
   EXPECT_EQ(odoms, 2);
   EXPECT_EQ(tfs, 1);
+}
+
+TEST(SimBagWriter, BagScanSourceReadsEveryScanBack) {
+  const std::string path = ::testing::TempDir() + "/sim_read_test.bag";
+  {
+    SimBagWriter writer(path, poseFromXyzRpy(0, 0, 0.5, 0, 0, 0), SimBagWriter::Options{});
+    sim::SimScan scan;
+    scan.points = {{1.f, 2.f, 3.f, 40.f, 5, 0.01f}, {-1.f, 0.5f, 0.f, 7.f, 15, 0.09f}};
+    for (int i = 0; i < 5; ++i) {
+      scan.stamp = 1000.0 + 0.1 * i;
+      writer.write(scan);
+    }
+  }
+  BagScanSource source(path, "/velodyne_points");
+  EXPECT_EQ(source.messageCount(), 5u);
+  BagScanSource::Scan scan;
+  int read = 0;
+  while (source.next(&scan)) {
+    ASSERT_TRUE(scan.conversion.ok) << scan.conversion.error;
+    EXPECT_EQ(scan.frame_id, "velodyne");
+    EXPECT_EQ(scan.cloud.size(), 2u);
+    EXPECT_NEAR(scan.stamp, 1000.0 + 0.1 * read, 1e-6);
+    ++read;
+  }
+  EXPECT_EQ(read, 5);
+  EXPECT_TRUE(source.lookupTransform("base_link", "velodyne").has_value());
 }
 
 }  // namespace
