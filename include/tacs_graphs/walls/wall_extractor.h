@@ -70,7 +70,7 @@ struct WallExtractionConfig {
   /// stretches are cut out of the segment. 0 = off.
   int seen_over_min_points = 3;
   /// ...points at least this far behind the segment's plane (m)...
-  double seen_over_depth = 0.3;
+  double seen_over_depth = 0.15;
   /// ...on rays at least this far above the stretch's top where they cross it (m).
   double seen_over_clearance = 0.1;
   /// A segment in front of same-facing walls of the same scan, more than distance_threshold and
