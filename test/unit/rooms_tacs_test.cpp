@@ -3,6 +3,8 @@
 // the room merging of a re-visited room.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "common/room_layout.h"
 #include "tacs_graphs/rooms/room_segmenter.h"
 
@@ -134,6 +136,41 @@ TEST(RoomsTacs, WideOpeningSplitsOnlyThroughTheDoorwayCut) {
   for (const auto& s : run.steps) observations += s.observations.size() + s.rejected.size();
   EXPECT_EQ(observations, 1u);
   for (const auto& [id, r] : without.rooms()) EXPECT_FALSE(allInside(r, 0, 5, 0, 4));
+}
+
+TEST(RoomsTacs, DoorwayMappedAfterTheRobotPassedSplitsTheAccumulatedKeyframes) {
+  // A 2 m opening the safe graph passes through; its jambs (the y = 4 wall's faces west of x = 7)
+  // are mapped only once the robot is in the corridor, as when a door's wall is long on its far
+  // side only.
+  const test::FloorPlan plan = test::twoRoomsAndCorridor(2.0);
+  test::FloorPlan without_jambs = plan;
+  auto& faces = without_jambs.faces;
+  faces.erase(std::remove_if(faces.begin(), faces.end(),
+                             [](const WallSegment& f) {
+                               return std::abs(f.endpoints[0].y() - 4.0) < 1e-9 &&
+                                      std::abs(f.endpoints[1].y() - 4.0) < 1e-9 &&
+                                      std::max(f.endpoints[0].x(), f.endpoints[1].x()) <= 7.0 &&
+                                      std::min(f.endpoints[0].x(), f.endpoints[1].x()) >= 0.0;
+                             }),
+              faces.end());
+  ASSERT_EQ(faces.size(), plan.faces.size() - 4);
+  const TraversableMap map = plan.map();
+  const WallMap early = without_jambs.wallMap(), late = plan.wallMap();
+  TacsFreeSpace tacs{TacsFreeSpaceConfig{}};
+  const std::vector<Eigen::Vector3d> path = {{1, 1, 0},   {3, 2, 0}, {3, 3.5, 0},
+                                             {3, 4.6, 0}, {5, 5, 0}, {6, 5, 0}};
+  for (uint32_t k = 0; k < 5; ++k) {
+    const auto step = tacs.step(k, path[k], map, early.landmarks());
+    EXPECT_TRUE(step.finished.empty()) << k;  // one component: room A and the corridor
+  }
+  const auto step = tacs.step(5, path[5], map, late.landmarks());
+  ASSERT_EQ(step.finished.size(), 1u);
+  EXPECT_EQ(step.finished[0].keyframe_ids, (std::vector<uint32_t>{0, 1, 2}));
+  for (const auto& p : step.finished[0].points) EXPECT_LT(p.y(), 4.0);
+  const auto corridor = tacs.flush(map, late.landmarks());
+  ASSERT_TRUE(corridor);
+  EXPECT_EQ(corridor->keyframe_ids, (std::vector<uint32_t>{3, 4, 5}));
+  EXPECT_EQ(tacs.accumulatedKeyframes(), 0u);
 }
 
 TEST(RoomsTacs, NarrowDoorSplitsTheSafeGraphAndHoldsTheKeyframeInIt) {

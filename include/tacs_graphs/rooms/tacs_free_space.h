@@ -15,11 +15,12 @@
 //    joins them (T_room grows).
 //  - When the robot stands on no safe node (in a doorway or a narrow passage), the keyframe is
 //    held: it joins no region, nothing is emitted.
-//  - When the robot is on a safe node whose component holds none of the accumulated keyframes'
-//    positions, the graph has split between where it was and where it is (it went through a
-//    doorway): the accumulated region is emitted and a new one starts with keyframe k. The
-//    emitted T_room is the union of the T_inside of the accumulated keyframes evaluated on the
-//    current room graph, so free space seen through a door before the door was cut stays out.
+//  - Accumulated keyframes in other components than the robot's are split off: the graph has
+//    split between where the robot was and where it is (it went through a doorway, or a doorway
+//    it passed was mapped since). Each such component is emitted as a region; the keyframes in
+//    the robot's component go on accumulating, with keyframe k. An emitted T_room is the union
+//    of the T_inside of its keyframes evaluated on the current room graph, so free space seen
+//    through a door before the door was cut stays out.
 //  - After `max_keyframes_per_observation` keyframes the region is also emitted (and restarted),
 //    so a robot staying in one room still reports it; the room map merges the repeats.
 // The emitted free space also holds the traversable nodes that are too close to walls or
@@ -90,13 +91,14 @@ class TacsFreeSpace {
   Labels labelRoomGraph(const TraversableMap& map,
                         const std::map<uint32_t, WallLandmark>& landmarks) const;
   int labelAt(const TraversableMap& map, const Labels& labels, const Eigen::Vector3d& p) const;
-  std::optional<FreeSpaceRegion> emit(const TraversableMap& map, const Labels& labels);
-  void attachBorder(const TravGraph& g, const Labels& labels, std::vector<char>* in_room) const;
-
   struct Accumulated {
     uint32_t keyframe_id;
     Eigen::Vector3d position;
   };
+  std::optional<FreeSpaceRegion> emit(const TraversableMap& map, const Labels& labels,
+                                      const std::vector<Accumulated>& keyframes);
+  void attachBorder(const TravGraph& g, const Labels& labels, std::vector<char>* in_room) const;
+
   TacsFreeSpaceConfig config_;
   std::vector<Accumulated> accumulated_;
 };

@@ -148,16 +148,16 @@ int TacsFreeSpace::labelAt(const TraversableMap& map, const Labels& labels,
   return best;
 }
 
-std::optional<FreeSpaceRegion> TacsFreeSpace::emit(const TraversableMap& map,
-                                                   const Labels& labels) {
-  // T_room (eq. 3): the union over the accumulated keyframes of T_inside, each evaluated on the
-  // current room graph (doorways found since then are cut).
+std::optional<FreeSpaceRegion> TacsFreeSpace::emit(const TraversableMap& map, const Labels& labels,
+                                                   const std::vector<Accumulated>& keyframes) {
+  // T_room (eq. 3): the union over the keyframes of T_inside, each evaluated on the current room
+  // graph (doorways found since then are cut).
   FreeSpaceRegion region;
   const TravGraph& g = map.graph();
   std::vector<char> in_room(g.nodes.size(), 0);
   std::unordered_set<int> whole;  // components taken whole (local_radius = 0)
   std::unordered_map<int, std::vector<Eigen::Vector2d>> seeds;  // component -> keyframes in it
-  for (const auto& a : accumulated_) {
+  for (const auto& a : keyframes) {
     region.keyframe_ids.push_back(a.keyframe_id);
     region.keyframe_positions.push_back(a.position);
     const int l = labelAt(map, labels, a.position);
@@ -168,7 +168,6 @@ std::optional<FreeSpaceRegion> TacsFreeSpace::emit(const TraversableMap& map,
       seeds[l].push_back(a.position.head<2>());
     }
   }
-  accumulated_.clear();
   // One pass over the nodes: in a component of the region and within the local reach of one of
   // its keyframes.
   const double r2 = config_.local_radius * config_.local_radius;
@@ -242,19 +241,35 @@ TacsFreeSpace::StepResult TacsFreeSpace::step(uint32_t keyframe_id,
   result.inside = true;
   result.inside_nodes =
       static_cast<size_t>(std::count(labels.label.begin(), labels.label.end(), here));
-  bool connected = accumulated_.empty();
+  // Accumulated keyframes the room graph now separates from the robot: it went through a
+  // doorway, or a doorway it passed earlier has been mapped since (a door whose jambs are long on
+  // its far side only). Each of their components is a finished region, in the order the robot
+  // visited them; the keyframes in the robot's component go on accumulating.
+  std::vector<std::pair<int, std::vector<Accumulated>>> apart;  // component -> its keyframes
+  std::vector<Accumulated> staying;
+  int previous = -1;
   for (const auto& a : accumulated_) {
-    if (labelAt(map, labels, a.position) == here) {
-      connected = true;
-      break;
+    int l = labelAt(map, labels, a.position);
+    if (l < 0) l = previous;  // held in a doorway: with the keyframes before it
+    previous = l;
+    if (l < 0 || l == here) {
+      staying.push_back(a);
+      continue;
     }
+    auto it = std::find_if(apart.begin(), apart.end(), [l](const auto& c) { return c.first == l; });
+    if (it == apart.end()) it = apart.insert(apart.end(), {l, {}});
+    it->second.push_back(a);
   }
-  if (!connected) {  // the graph split between the accumulated keyframes and the robot
-    if (auto region = emit(map, labels)) result.finished.push_back(std::move(*region));
+  for (const auto& [component, keyframes] : apart) {
+    if (auto region = emit(map, labels, keyframes)) result.finished.push_back(std::move(*region));
   }
+  accumulated_ = std::move(staying);
   accumulated_.push_back({keyframe_id, robot_position});
   if (static_cast<int>(accumulated_.size()) >= config_.max_keyframes_per_observation) {
-    if (auto region = emit(map, labels)) result.finished.push_back(std::move(*region));
+    if (auto region = emit(map, labels, accumulated_)) {
+      result.finished.push_back(std::move(*region));
+    }
+    accumulated_.clear();
   }
   return result;
 }
@@ -262,7 +277,9 @@ TacsFreeSpace::StepResult TacsFreeSpace::step(uint32_t keyframe_id,
 std::optional<FreeSpaceRegion> TacsFreeSpace::flush(
     const TraversableMap& map, const std::map<uint32_t, WallLandmark>& landmarks) {
   if (accumulated_.empty()) return std::nullopt;
-  return emit(map, labelRoomGraph(map, landmarks));
+  auto region = emit(map, labelRoomGraph(map, landmarks), accumulated_);
+  accumulated_.clear();
+  return region;
 }
 
 }  // namespace tacs
