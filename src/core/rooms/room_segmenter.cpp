@@ -42,8 +42,9 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
     return config_.method == "tacs" && r.found &&
            room_map_.spansSeparateRooms(r.room, walls.landmarks());
   };
+  bool spans = spans_rooms(extracted);
   const double radius = config_.tacs.path_retry_radius;
-  if ((!extracted.found || spans_rooms(extracted)) && radius > 0.0 && !path.empty()) {
+  if ((!extracted.found || spans) && radius > 0.0 && !path.empty()) {
     // A region around a corner of two corridors lies half in each: no facing pair holds most of
     // it. The free space near the robot's path is the corridor it drove along (also the part of
     // a region spanning two rooms that the robot drove through).
@@ -56,14 +57,17 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
     }
     if (near.size() < points.size()) {
       RoomExtractionResult retried = extractRoom(near, walls.landmarks(), axes, config_.extraction);
-      if (retried.found && !spans_rooms(retried)) extracted = std::move(retried);
+      if (retried.found && !spans_rooms(retried)) {
+        extracted = std::move(retried);
+        spans = false;
+      }
     }
   }
   if (!extracted.found) {
     result->rejected.push_back(extracted.reason);
     return;
   }
-  if (spans_rooms(extracted)) {
+  if (spans) {
     result->rejected.push_back("region spans mapped rooms a wall separates (a missed doorway)");
     return;
   }

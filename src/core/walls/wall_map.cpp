@@ -186,17 +186,21 @@ bool WallMap::isSeenOver(uint32_t id) const {
   // facing away, at most kMaxSlab behind, with no face of another wall between the two (a low
   // cabinet in the next room stands in front of that room's face of the wall).
   constexpr double kMaxSlab = 1.0;  // [m]
+  // Other landmarks behind the face and overlapping it along the axis, with their depth: the
+  // candidates for a face between the landmark and a back, gathered once for all surfaces.
+  std::vector<std::pair<const WallLandmark*, double>> behind;
+  for (const auto& [other_id, w] : landmarks_) {
+    const double dw = depth(w);
+    if (other_id != id && dw > 0.0 && dw < kMaxSlab && extentGap(lm, w) < 0.0) {
+      behind.emplace_back(&w, dw);
+    }
+  }
   const auto back_of_slab = [&](const WallLandmark& s) {
     const double d = depth(s);
     if (s.normal.dot(lm.normal) > -min_cos || d <= 0.0 || d > kMaxSlab) return false;
-    for (const auto& [other_id, w] : landmarks_) {
-      const double dw = depth(w);
-      if (other_id != id && w.normal.dot(s.normal) >= min_cos && dw > 0.0 && dw < d - max_dist &&
-          extentGap(lm, w) < 0.0) {
-        return false;
-      }
-    }
-    return true;
+    return std::none_of(behind.begin(), behind.end(), [&](const auto& b) {
+      return b.first->normal.dot(s.normal) >= min_cos && b.second < d - max_dist;
+    });
   };
   std::vector<std::pair<double, double>> covered;
   for (const WallLandmark& s : seen_over_) {
