@@ -169,6 +169,42 @@ TEST(FactorGraph, WallToWallEdgePullsDuplicatesTogether) {
   EXPECT_NEAR(g.wall(1).d, 1.0, 1e-3);
 }
 
+// The first scan was taken on a 0.5 deg roll and pitch tilt (the robot rocked); every later
+// keyframe stands level on the floor. The map is that first keyframe's frame, so with its
+// orientation held the vertical walls and the odometry disagree and the path climbs; with a soft
+// tilt prior the walls level the map.
+double climbAlongLevelPath(double anchor_tilt_sigma) {
+  const double tilt = 0.5 * M_PI / 180.0;
+  std::vector<Pose3> truth = {poseFromXyzRpy(0.0, 0.0, 0.0, tilt, tilt, 0.0)};
+  for (int i = 1; i < 10; ++i) truth.push_back(poseFromXyzRpy(i, 0.0, 0.0, 0.0, 0.0, 0.0));
+  BackendConfig config;
+  config.anchor_tilt_sigma = anchor_tilt_sigma;
+  FactorGraph g{config};
+  const std::vector<WallPlane> walls = {{M_PI / 2, 2.0}, {-M_PI / 2, 2.0}, {M_PI, 12.0}};
+  for (uint32_t w = 0; w < walls.size(); ++w) g.addWall(w, walls[w]);
+  for (size_t i = 0; i < truth.size(); ++i) {
+    g.addKeyframe(i, truth[0].inverse() * truth[i]);  // the odometry starts at identity
+    if (i > 0) {
+      g.addRelativePose(i - 1, i, truth[i - 1].inverse() * truth[i], Matrix6d::Identity() * 1e4,
+                        false);
+    }
+    for (uint32_t w = 0; w < walls.size(); ++w) {
+      const Eigen::Vector3d n_b = truth[i].rotation().transpose() * walls[w].normal();
+      g.addWallObservation(i, w, n_b, walls[w].d + walls[w].normal().dot(truth[i].translation()));
+    }
+  }
+  EXPECT_TRUE(g.optimize().usable);
+  return std::abs(g.keyframePose(9).translation().z() - g.keyframePose(1).translation().z());
+}
+
+TEST(FactorGraph, VerticalWallsLevelAMapAnchoredOnATiltedFirstScan) {
+  const double held = climbAlongLevelPath(0.0);  // 8 m at up to 0.7 deg
+  const double levelled = climbAlongLevelPath(BackendConfig().anchor_tilt_sigma);
+  EXPECT_GT(held, 0.03);
+  // Thirty wall observations against a 3 deg prior: the walls win almost all of the tilt.
+  EXPECT_LT(levelled, 0.2 * held);
+}
+
 TEST(FactorGraph, RejectsBadInput) {
   FactorGraph g{BackendConfig()};
   g.addKeyframe(0, Pose3::Identity());
@@ -180,6 +216,9 @@ TEST(FactorGraph, RejectsBadInput) {
   EXPECT_THROW(WallPlane::fromNormalD(Eigen::Vector3d::UnitZ(), 1.0), std::invalid_argument);
   BackendConfig bad;
   bad.room_sigma = 0;
+  EXPECT_THROW(FactorGraph{bad}, ConfigError);
+  bad = BackendConfig();
+  bad.anchor_tilt_sigma = -0.1;
   EXPECT_THROW(FactorGraph{bad}, ConfigError);
 }
 

@@ -30,6 +30,9 @@ struct BackendConfig {
   std::string trust_region = "dogleg";
   int num_threads = 1;               // Ceres threads (the other core runs the front end)
   int optimize_every_keyframes = 1;  // optimise after this many new keyframes (and on each loop)
+  // Roll and pitch of the first keyframe, which anchors the map: 0 holds them as measured; > 0
+  // lets the vertical walls level the map within this prior [rad].
+  double anchor_tilt_sigma = 0.05;
 
   template <class V>
   void visit(V& v) {
@@ -41,6 +44,7 @@ struct BackendConfig {
     v("corridor_anchor_sigma", corridor_anchor_sigma);
     v("wall_merge_sigma_theta", wall_merge_sigma_theta);
     v("wall_merge_sigma_d", wall_merge_sigma_d);
+    v("anchor_tilt_sigma", anchor_tilt_sigma);
     v("max_iterations", max_iterations);
     v("trust_region", trust_region);
     v("num_threads", num_threads);
@@ -72,7 +76,8 @@ class FactorGraph {
   using Matrix6d = Eigen::Matrix<double, 6, 6>;
   explicit FactorGraph(const BackendConfig& config);
 
-  /// The first keyframe added anchors the map frame (held constant).
+  /// The first keyframe added anchors the map frame: its position and yaw are held, its roll and
+  /// pitch too unless anchor_tilt_sigma > 0.
   void addKeyframe(uint32_t id, const Pose3& T_map_base);
   bool hasKeyframe(uint32_t id) const { return keyframes_.count(id) > 0; }
   /// Odometry (robust = false) or loop closure (robust = true) edge: T_from_to measured.
@@ -136,6 +141,7 @@ class FactorGraph {
   std::vector<WallObservation> wall_observations_;
   std::vector<std::pair<uint32_t, uint32_t>> wall_to_wall_;
   std::optional<uint32_t> anchor_keyframe_;
+  Eigen::Quaterniond anchor_orientation_ = Eigen::Quaterniond::Identity();  // as first added
 };
 
 }  // namespace tacs

@@ -107,6 +107,26 @@ struct CorridorAnchorFactor {
   double inv_sigma;
 };
 
+/// Prior on the anchor keyframe's orientation: yaw is the map's gauge and held (sigma_yaw tiny),
+/// roll and pitch only softly, so the vertical walls (Sec. III-B-1) level the map when the first
+/// scan was taken on a tilt. Residual (3): 2 * vec(q0^-1 * q) / [sigma_tilt, sigma_tilt,
+/// sigma_yaw], the rotation error in the anchor's frame.
+struct AnchorOrientationFactor {
+  AnchorOrientationFactor(const Eigen::Quaterniond& q0, double sigma_tilt, double sigma_yaw)
+      : q0(q0), inv_sigma(1.0 / sigma_tilt, 1.0 / sigma_tilt, 1.0 / sigma_yaw) {}
+
+  template <typename T>
+  bool operator()(const T* q, T* residual) const {
+    Eigen::Map<const Eigen::Quaternion<T>> rot(q);
+    const Eigen::Quaternion<T> err = q0.cast<T>().conjugate() * rot;
+    for (int i = 0; i < 3; ++i) residual[i] = T(2.0) * err.vec()[i] * T(inv_sigma[i]);
+    return true;
+  }
+
+  Eigen::Quaterniond q0;
+  Eigen::Vector3d inv_sigma;
+};
+
 /// Wall-to-wall edge of room merging (paper eq. 4): a wall of a newly detected room that the merged
 /// room already holds must coincide with it. Residual (2): [wrapped angle difference / sigma_theta;
 /// d difference / sigma_d].

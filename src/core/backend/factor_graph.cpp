@@ -21,6 +21,7 @@ void BackendConfig::validate() const {
                                     {"wall_merge_sigma_d", wall_merge_sigma_d}}) {
     requireConfig(value > 0, std::string("backend.") + name, "must be > 0");
   }
+  requireConfig(anchor_tilt_sigma >= 0, "backend.anchor_tilt_sigma", "must be >= 0");
   requireConfig(max_iterations >= 1, "backend.max_iterations", "must be >= 1");
   requireConfig(trust_region == "levenberg_marquardt" || trust_region == "dogleg",
                 "backend.trust_region", "must be levenberg_marquardt or dogleg");
@@ -42,7 +43,10 @@ void FactorGraph::addKeyframe(uint32_t id, const Pose3& T_map_base) {
   const Eigen::Quaterniond q(T_map_base.rotation());
   const Eigen::Vector3d t = T_map_base.translation();
   keyframes_[id] = {{t.x(), t.y(), t.z()}, {q.x(), q.y(), q.z(), q.w()}};
-  if (!anchor_keyframe_) anchor_keyframe_ = id;
+  if (!anchor_keyframe_) {
+    anchor_keyframe_ = id;
+    anchor_orientation_ = q;
+  }
 }
 
 void FactorGraph::addRelativePose(uint32_t from, uint32_t to, const Pose3& T_from_to,
@@ -121,7 +125,15 @@ OptimizationReport FactorGraph::optimize() {
   if (anchor_keyframe_) {
     auto& anchor = keyframes_.at(*anchor_keyframe_);
     problem.SetParameterBlockConstant(anchor.t.data());
-    problem.SetParameterBlockConstant(anchor.q.data());
+    if (config_.anchor_tilt_sigma > 0.0) {
+      // Yaw is the gauge: held by a prior far tighter than anything that could pull on it.
+      constexpr double kYawSigma = 1e-6;
+      auto* cost = new ceres::AutoDiffCostFunction<AnchorOrientationFactor, 3, 4>(
+          new AnchorOrientationFactor(anchor_orientation_, config_.anchor_tilt_sigma, kYawSigma));
+      problem.AddResidualBlock(cost, nullptr, anchor.q.data());
+    } else {
+      problem.SetParameterBlockConstant(anchor.q.data());
+    }
   }
   for (const auto& e : pose_edges_) {
     auto& a = keyframes_.at(e.from);
