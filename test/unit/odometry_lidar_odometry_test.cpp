@@ -150,6 +150,40 @@ TEST(LidarOdometry, TooFewPointsAreRejectedBeforeTheFirstKeyframe) {
   EXPECT_FALSE(odometry.localMap());
 }
 
+// A standing robot in a 20 m corridor with pillars along its walls; from scan 3 on it sees a
+// cabinet 0.7 m in front of the far end wall that the local map (scan 0) lacks, as a scan sees a
+// cabinet through a doorway it has just passed. Returns the x error of the last scan [m]: under
+// the 1 m gate the cabinet pairs with the end wall behind it and drags the scan along the
+// corridor.
+double xErrorWithUnmappedCabinet(const OdometryConfig& config) {
+  test::BoxRoom corridor;
+  corridor.room = {{0.0, 0.0, 0.0}, {20.0, 2.2, 2.8}};
+  corridor.obstacles = {{{4.0, 0.0, 0.0}, {4.4, 0.3, 2.8}},
+                        {{8.0, 1.9, 0.0}, {8.4, 2.2, 2.8}},
+                        {{15.0, 0.0, 0.0}, {15.4, 0.3, 2.8}}};
+  test::BoxRoom with_cabinet = corridor;
+  with_cabinet.obstacles.push_back({{19.3, 0.0, 0.0}, {19.6, 1.2, 2.0}});
+  const Pose3 sensor = poseFromXyzRpy(12.0, 1.1, 0.5, 0.0, 0.0, 0.0);
+  LidarOdometry odometry(config);
+  OdometryResult r;
+  for (int i = 0; i <= 5; ++i) {
+    r = odometry.process(100.0 + 0.1 * i, test::renderScan(i < 3 ? corridor : with_cabinet, sensor,
+                                                           200 + i, 16, 900));
+    EXPECT_TRUE(r.ok) << "scan " << i << ": " << r.error;
+  }
+  EXPECT_EQ(odometry.numKeyframes(), 1u);  // the local map is scan 0 alone
+  return std::abs(r.T_odom_base.translation().x());
+}
+
+TEST(LidarOdometry, NarrowRefinementIgnoresStructureTheLocalMapLacks) {
+  OdometryConfig wide_only;
+  wide_only.refine_correspondence_distance_m = 0.0;
+  const double wide_error = xErrorWithUnmappedCabinet(wide_only);
+  const double refined_error = xErrorWithUnmappedCabinet(OdometryConfig());
+  EXPECT_GT(wide_error, 0.05);  // 78 mm when written
+  EXPECT_LT(refined_error, 0.01);
+}
+
 std::string validationError(const OdometryConfig& config) {
   try {
     config.validate();
@@ -170,6 +204,10 @@ TEST(OdometryConfig, ValidateNamesTheBadField) {
   config = OdometryConfig();
   config.min_inlier_ratio = 1.5;
   EXPECT_NE(validationError(config).find("odometry.min_inlier_ratio"), std::string::npos);
+  config = OdometryConfig();
+  config.refine_correspondence_distance_m = -0.1;
+  EXPECT_NE(validationError(config).find("odometry.refine_correspondence_distance_m"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -25,6 +25,11 @@ struct OdometryConfig {
   // Without a motion prior (start, time gap, rejected scan) a first coarse alignment uses this
   // wider gating [m], so a jump of up to about this size is recovered.
   double recovery_correspondence_distance_m = 2.5;
+  // [m] gate of a second alignment from the first one's result (0, or not below
+  // gicp.max_correspondence_distance_m: off). Under the wide gate, points of structure the local
+  // map lacks pair with other surfaces up to a metre away and can drag a scan along a corridor;
+  // the narrow pass keeps only the close pairs.
+  double refine_correspondence_distance_m = 0.5;
   double min_inlier_ratio = 0.3;     // registrations with fewer inliers are rejected
   double max_correction_m = 1.0;     // [m] a registration may move the guess at most this far
   double max_correction_deg = 30.0;  // [deg] ... and rotate it at most this much
@@ -43,6 +48,7 @@ struct OdometryConfig {
     v("min_scan_points", min_scan_points);
     v("max_time_gap_s", max_time_gap_s);
     v("recovery_correspondence_distance_m", recovery_correspondence_distance_m);
+    v("refine_correspondence_distance_m", refine_correspondence_distance_m);
     v("min_inlier_ratio", min_inlier_ratio);
     v("max_correction_m", max_correction_m);
     v("max_correction_deg", max_correction_deg);

@@ -21,6 +21,8 @@ void OdometryConfig::validate() const {
   requireConfig(max_time_gap_s > 0.0, "odometry.max_time_gap_s", "must be > 0");
   requireConfig(recovery_correspondence_distance_m > 0.0,
                 "odometry.recovery_correspondence_distance_m", "must be > 0");
+  requireConfig(refine_correspondence_distance_m >= 0.0,
+                "odometry.refine_correspondence_distance_m", "must be >= 0 (0 = off)");
   requireConfig(min_inlier_ratio >= 0.0 && min_inlier_ratio <= 1.0, "odometry.min_inlier_ratio",
                 "must be in [0, 1]");
   requireConfig(max_correction_m > 0.0, "odometry.max_correction_m", "must be > 0");
@@ -149,20 +151,29 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan) {
   bool reset = false;
   const Pose3 guess = predict(stamp, &reset);
   result.motion_prior_reset = reset;
-  Gicp gicp(config_.gicp);
-  gicp.setTarget(local_map_);
-  gicp.setSource(scan_gicp);
+  // Aligns the scan to the local map from `from` under the correspondence gate `gate_m`.
+  const auto align = [&](double gate_m, const Pose3& from) {
+    GicpConfig gated = config_.gicp;
+    gated.max_correspondence_distance_m = gate_m;
+    Gicp gicp(gated);
+    gicp.setTarget(local_map_);
+    gicp.setSource(scan_gicp);
+    return gicp.align(from);
+  };
+  const double gate_m = config_.gicp.max_correspondence_distance_m;
   Pose3 start = guess;
   if (reset) {  // no motion prior: a coarse pass with wide gating widens the basin
-    GicpConfig coarse = config_.gicp;
-    coarse.max_correspondence_distance_m =
-        std::max(config_.recovery_correspondence_distance_m, coarse.max_correspondence_distance_m);
-    Gicp wide(coarse);
-    wide.setTarget(local_map_);
-    wide.setSource(scan_gicp);
-    start = wide.align(guess).T_target_source;
+    start =
+        align(std::max(config_.recovery_correspondence_distance_m, gate_m), guess).T_target_source;
   }
-  result.registration = gicp.align(start);
+  result.registration = align(gate_m, start);
+  const double refine_m = config_.refine_correspondence_distance_m;
+  if (refine_m > 0.0 && refine_m < gate_m) {
+    // The inlier test below stays on the wide gate's pairs: the narrow gate leaves out far
+    // points by design.
+    result.registration.T_target_source =
+        align(refine_m, result.registration.T_target_source).T_target_source;
+  }
   const GicpResult& reg = result.registration;
   if (reg.inlier_ratio < config_.min_inlier_ratio) {
     return finish(format("registration rejected: inlier ratio %.2f < %.2f", reg.inlier_ratio,
