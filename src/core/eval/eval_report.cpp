@@ -151,8 +151,8 @@ void writeEvalReport(const std::string& out_dir, const std::vector<EvalRun>& run
         "(mean over trials with loops).\n\n"
      << "| World | Method | ATE (m) | N_loop | PR_loop | t_LD (s) |\n|---|---|---|---|---|---|\n";
   rows("loop_closure", [](const MethodSummary& s) {
-    return fixed(s.ate_m, 3) + " | " + fixed(s.n_loop, 1) + " | " + fixed(s.pr_loop, 2) + " | " +
-           fixed(s.t_ld_s, 2);
+    return fixed(s.ate_m, 4) + " | " + fixed(s.n_loop, 1) + " | " + fixed(s.pr_loop, 2) + " | " +
+           fixed(s.t_ld_s, 3);
   });
 
   md << "\n## Table III: pose accuracy, ATE (m)\n\n| Method |";
@@ -171,10 +171,10 @@ void writeEvalReport(const std::string& out_dir, const std::vector<EvalRun>& run
         continue;
       }
       const double ate = row < 0 ? it->second.odom_ate_m : it->second.ate_m;
-      md << " " << fixed(ate, 3) << " |";
+      md << " " << fixed(ate, 4) << " |";
       weighted += ate * it->second.path_m, length += it->second.path_m;
     }
-    md << " " << (length > 0 ? fixed(weighted / length, 3) : "-") << " |\n";
+    md << " " << (length > 0 ? fixed(weighted / length, 4) : "-") << " |\n";
   }
 
   md << "\n## Runs\n\n| World | Method | path (m) | odometry ATE (m) | scans/s | wall time (s) |\n"
