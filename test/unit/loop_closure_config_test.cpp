@@ -52,6 +52,11 @@ TEST(LoopClosureConfig, InvalidValuesNameTheField) {
   c = LoopClosureConfig();
   c.registration.score_max_normal_z = 1.5;
   expectError(c, "loop_closure.registration.score_max_normal_z");
+  c = LoopClosureConfig();
+  c.registration.tilt_information_scale = 0.0;  // a singular information
+  expectError(c, "loop_closure.registration.tilt_information_scale");
+  c = LoopClosureConfig();
+  c.registration.score_max_normal_z = 1.5;
   EXPECT_THROW(LoopDetector{c}, ConfigError);
 }
 

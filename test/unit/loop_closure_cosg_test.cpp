@@ -1,6 +1,7 @@
 // CoSG-LCD (paper Sec. III-D): room-triggered loop detection in the synthetic box room.
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 
 #include "common/loop_closure_scene.h"
@@ -69,6 +70,33 @@ TEST(LoopClosureCosg, ClosesARevisitWithTheCorrectRelativePose) {
   EXPECT_EQ(detector.stats().coarse_loops, 1);
   EXPECT_EQ(detector.stats().detections, 1);
   EXPECT_GT(detector.stats().total_ms, 0.0);
+}
+
+TEST(LoopClosureCosg, TiltInformationScaleDampsOnlyRollAndPitch) {
+  const test::BoxRoom room;
+  const Pose3 error = poseFromXyzRpy(0.05, -0.04, 0.0, 0.0, 0.0, 1.0 * M_PI / 180.0);
+  LoopClosureConfig full_config, damped_config;
+  full_config.registration.tilt_information_scale = 1.0;
+  damped_config.registration.tilt_information_scale = 0.01;
+  LoopDetector full{full_config};
+  LoopDetector damped{damped_config};
+  const Revisit a = revisit(&full, room, error);
+  const Revisit b = revisit(&damped, room, error);
+  ASSERT_EQ(a.detection.loops.size(), 1u);
+  ASSERT_EQ(b.detection.loops.size(), 1u);
+  const Eigen::Matrix<double, 6, 6>& I = a.detection.loops.front().information;
+  const Eigen::Matrix<double, 6, 6>& J = b.detection.loops.front().information;
+  // Same registration, so the Hessians agree but for the rows and columns of rx and ry.
+  const double tol = 1e-6 * I.cwiseAbs().maxCoeff();
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) {
+      const double factor = ((r == 3 || r == 4) ? 0.1 : 1.0) * ((c == 3 || c == 4) ? 0.1 : 1.0);
+      EXPECT_NEAR(J(r, c), factor * I(r, c), tol) << "entry " << r << "," << c;
+    }
+  }
+  EXPECT_GT(I(3, 3), 0.0);
+  const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(J);
+  EXPECT_EQ(llt.info(), Eigen::Success);
 }
 
 TEST(LoopClosureCosg, LargeInitialErrorClosesThroughTheFinePathOnly) {

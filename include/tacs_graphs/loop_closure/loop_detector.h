@@ -16,7 +16,8 @@
 // corrected, a further loop would be redundant (Sec. III-D).
 //
 // A loop's information is the GICP Hessian at the result (the unit-less plane covariances of
-// gicp.h, as for the odometry's keyframe information) times registration.information_scale.
+// gicp.h, as for the odometry's keyframe information) times registration.information_scale, its
+// roll and pitch further damped by registration.tilt_information_scale.
 //
 // The distance baseline (hdl_graph_slam / S-Graphs+ style) runs on every keyframe: candidates
 // within a fixed xy distance that lie far enough back along the path, the lowest GICP fitness

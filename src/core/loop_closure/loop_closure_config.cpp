@@ -17,6 +17,8 @@ void LoopRegistrationConfig::validate() const {
   requireConfig(score_min_overlap > 0.0 && score_min_overlap <= 1.0, p + "score_min_overlap",
                 "must be in (0, 1]");
   requireConfig(information_scale > 0.0, p + "information_scale", "must be > 0");
+  requireConfig(tilt_information_scale > 0.0 && tilt_information_scale <= 1.0,
+                p + "tilt_information_scale", "must be in (0, 1]");
 }
 
 void CosgLoopConfig::validate() const {

@@ -161,8 +161,12 @@ LoopClosure LoopDetector::makeLoop(const Registration& r, uint32_t query, LoopPa
   Gicp gicp(gc);
   gicp.setTarget(keyframes_.at(r.candidate).cloud);
   gicp.setSource(keyframes_.at(query).cloud);
-  loop.information =
-      config_.registration.information_scale * gicp.evaluate(loop.T_from_to).information;
+  // Roll and pitch damped by tilt_information_scale (loop_closure_config.h): S H S stays positive
+  // definite and scales their diagonal entries by the factor.
+  Eigen::Matrix<double, 6, 1> s = Eigen::Matrix<double, 6, 1>::Ones();
+  s(3) = s(4) = std::sqrt(config_.registration.tilt_information_scale);
+  loop.information = config_.registration.information_scale * s.asDiagonal() *
+                     gicp.evaluate(loop.T_from_to).information * s.asDiagonal();
   return loop;
 }
 
