@@ -50,13 +50,11 @@ TEST(LoopClosureConfig, InvalidValuesNameTheField) {
   c.distance.fitness_threshold = -1.0;
   expectError(c, "loop_closure.distance.fitness_threshold");
   c = LoopClosureConfig();
-  c.registration.score_max_normal_z = 1.5;
-  expectError(c, "loop_closure.registration.score_max_normal_z");
-  c = LoopClosureConfig();
   c.registration.tilt_information_scale = 0.0;  // a singular information
   expectError(c, "loop_closure.registration.tilt_information_scale");
   c = LoopClosureConfig();
   c.registration.score_max_normal_z = 1.5;
+  expectError(c, "loop_closure.registration.score_max_normal_z");
   EXPECT_THROW(LoopDetector{c}, ConfigError);
 }
 

@@ -24,9 +24,9 @@ struct LoopRegistrationConfig {
   double score_max_normal_z = 0.5;       // |normal z| above this: horizontal, not scored [-]
   double score_min_overlap = 0.3;        // the overlap counts as at least this share [-]
   // Scale of the GICP Hessian given as loop information. The Hessian counts every point pair as
-  // an independent measurement; a loop pairs two single scans whose errors are correlated (1-7 mm
-  // against the ground truth where the Hessian claims tenths of a millimetre), while the odometry
-  // edges it competes with come from scan-to-map registration.
+  // an independent measurement. An odometry edge carries the same kind of pair Hessian, but its
+  // pose comes from scan-to-map registration; a loop's pose comes from two single scans and is
+  // off by 1-7 mm against the ground truth on the simulated worlds.
   double information_scale = 0.1;
   // Further scale of the loop information's roll and pitch (rows and columns rx, ry scaled by its
   // square root). Two single scans of a floor seen as sparse rings register with tilt errors of
