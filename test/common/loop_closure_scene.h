@@ -16,9 +16,10 @@ inline Pose3 roomPose(double x, double y, double yaw_deg) {
   return poseFromXyzRpy(x, y, 0.5, 0.0, 0.0, yaw_deg * M_PI / 180.0);
 }
 
-/// The keyframe cloud seen from T_world_base (range-cropped, 0.2 m voxels).
-inline PointCloud keyframeCloud(const BoxRoom& room, const Pose3& T_world_base, unsigned seed) {
-  return preprocess(renderScan(room, T_world_base, seed), PreprocessConfig());
+/// The keyframe cloud seen from T_world_base (range-cropped, 0.2 m voxels), range noise `noise_m`.
+inline PointCloud keyframeCloud(const BoxRoom& room, const Pose3& T_world_base, unsigned seed,
+                                double noise_m = 0.01) {
+  return preprocess(renderScan(room, T_world_base, seed, 16, 900, noise_m), PreprocessConfig());
 }
 
 /// Adds keyframe `id` seen from `truth` with the pose estimate `estimate`; stamp = id seconds.

@@ -53,6 +53,12 @@ TEST(LoopClosureConfig, InvalidValuesNameTheField) {
   c.registration.tilt_information_scale = 0.0;  // a singular information
   expectError(c, "loop_closure.registration.tilt_information_scale");
   c = LoopClosureConfig();
+  c.registration.submap_length_m = -1.0;
+  expectError(c, "loop_closure.registration.submap_length_m");
+  c = LoopClosureConfig();
+  c.registration.submap_voxel_m = 0.0;
+  expectError(c, "loop_closure.registration.submap_voxel_m");
+  c = LoopClosureConfig();
   c.registration.score_max_normal_z = 1.5;
   expectError(c, "loop_closure.registration.score_max_normal_z");
   EXPECT_THROW(LoopDetector{c}, ConfigError);

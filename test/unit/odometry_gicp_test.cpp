@@ -142,6 +142,35 @@ TEST(Gicp, EvaluateScoresTheTruthBetterThanAWrongPose) {
   EXPECT_GT(good.inlier_ratio, bad.inlier_ratio);
 }
 
+// The source sees a cabinet 0.3 m in front of a wall that the target does not hold (as a scan
+// sees a surface its local map lacks, e.g. through a doorway). Its face pairs with the wall behind
+// within the gate; least squares gives those pairs a weight that drags the pose toward the wall,
+// the robust kernel leaves them out.
+TEST(Gicp, RobustKernelIsNotDraggedByStructureOnlyTheSourceHolds) {
+  test::BoxRoom empty, furnished;
+  empty.obstacles.clear();
+  furnished.obstacles = {{{2.0, 6.7, 0.0}, {6.0, 7.0, 2.0}}};  // a 4 m cabinet at the y = 7 wall
+  const Pose3 T_world_target = poseFromXyzRpy(5.0, 3.5, 0.5, 0.0, 0.0, 0.0);
+  const Pose3 T_world_source = poseFromXyzRpy(5.3, 3.6, 0.5, 0.0, 0.0, 0.05);
+  const Pose3 truth = T_world_target.inverse() * T_world_source;
+  const PointCloud target = preprocessed(test::renderScan(empty, T_world_target, 1));
+  const PointCloud source = preprocessed(test::renderScan(furnished, T_world_source, 2));
+  const auto align = [&](double robust_m) {
+    GicpConfig config;
+    config.robust_plane_distance_m = robust_m;
+    Gicp gicp(config);
+    gicp.setTarget(target);
+    gicp.setSource(source);
+    return gicp.align(Pose3::Identity());
+  };
+  const GicpResult plain = align(0.0);
+  const GicpResult robust = align(0.05);
+  EXPECT_GT(translationError(plain.T_target_source, truth), 0.02);
+  EXPECT_LT(translationError(robust.T_target_source, truth), 0.005);
+  EXPECT_LT(rotationErrorDeg(robust.T_target_source, truth), 0.1);
+  EXPECT_TRUE(robust.converged);
+}
+
 TEST(Gicp, WithoutDataReturnsNotConvergedAndTheGuess) {
   Gicp gicp;
   const Pose3 guess = poseFromXyzRpy(1, 2, 3, 0, 0, 0.5);

@@ -151,18 +151,19 @@ TEST(LidarOdometry, TooFewPointsAreRejectedBeforeTheFirstKeyframe) {
 }
 
 // A standing robot in a 20 m corridor with pillars along its walls; from scan 3 on it sees a
-// cabinet 0.7 m in front of the far end wall that the local map (scan 0) lacks, as a scan sees a
-// cabinet through a doorway it has just passed. Returns the x error of the last scan [m]: under
-// the 1 m gate the cabinet pairs with the end wall behind it and drags the scan along the
-// corridor.
-double xErrorWithUnmappedCabinet(const OdometryConfig& config) {
+// cabinet whose front stands `front_to_wall_m` in front of the far end wall, which the local map
+// (scan 0) lacks, as a scan sees a cabinet through a doorway it has just passed. Returns the x
+// error of the last scan [m]: within the gate the cabinet pairs with the end wall behind it and
+// drags the scan along the corridor.
+double xErrorWithUnmappedCabinet(const OdometryConfig& config, double front_to_wall_m = 0.7) {
   test::BoxRoom corridor;
   corridor.room = {{0.0, 0.0, 0.0}, {20.0, 2.2, 2.8}};
   corridor.obstacles = {{{4.0, 0.0, 0.0}, {4.4, 0.3, 2.8}},
                         {{8.0, 1.9, 0.0}, {8.4, 2.2, 2.8}},
                         {{15.0, 0.0, 0.0}, {15.4, 0.3, 2.8}}};
   test::BoxRoom with_cabinet = corridor;
-  with_cabinet.obstacles.push_back({{19.3, 0.0, 0.0}, {19.6, 1.2, 2.0}});
+  const double front = 20.0 - front_to_wall_m;
+  with_cabinet.obstacles.push_back({{front, 0.0, 0.0}, {front + 0.3, 1.2, 2.0}});
   const Pose3 sensor = poseFromXyzRpy(12.0, 1.1, 0.5, 0.0, 0.0, 0.0);
   LidarOdometry odometry(config);
   OdometryResult r;
@@ -182,6 +183,16 @@ TEST(LidarOdometry, NarrowRefinementIgnoresStructureTheLocalMapLacks) {
   const double refined_error = xErrorWithUnmappedCabinet(OdometryConfig());
   EXPECT_GT(wide_error, 0.05);  // 78 mm when written
   EXPECT_LT(refined_error, 0.01);
+}
+
+TEST(LidarOdometry, RobustRefinementIgnoresStructureTheLocalMapLacksWithinItsGate) {
+  // The cabinet's front 0.3 m before the end wall: within the narrow gate too.
+  OdometryConfig least_squares;
+  least_squares.refine_robust_plane_distance_m = 0.0;
+  const double plain_error = xErrorWithUnmappedCabinet(least_squares, 0.3);
+  const double robust_error = xErrorWithUnmappedCabinet(OdometryConfig(), 0.3);
+  EXPECT_GT(plain_error, 0.015);  // 25 mm when written
+  EXPECT_LT(robust_error, 0.005);
 }
 
 std::string validationError(const OdometryConfig& config) {
@@ -207,6 +218,14 @@ TEST(OdometryConfig, ValidateNamesTheBadField) {
   config = OdometryConfig();
   config.refine_correspondence_distance_m = -0.1;
   EXPECT_NE(validationError(config).find("odometry.refine_correspondence_distance_m"),
+            std::string::npos);
+  config = OdometryConfig();
+  config.refine_robust_plane_distance_m = -0.05;
+  EXPECT_NE(validationError(config).find("odometry.refine_robust_plane_distance_m"),
+            std::string::npos);
+  config = OdometryConfig();
+  config.gicp.robust_plane_distance_m = -0.05;
+  EXPECT_NE(validationError(config).find("odometry.gicp.robust_plane_distance_m"),
             std::string::npos);
 }
 

@@ -33,6 +33,19 @@ struct LoopRegistrationConfig {
   // 0.05-0.35 deg (yaw 0.01 deg); held at that weight they bend the map's height, which odometry
   // and the vertical walls already level. 1 keeps the Hessian's tilt.
   double tilt_information_scale = 0.01;
+  // An accepted loop's pose is registered once more between submaps: each keyframe's cloud merged
+  // with those of its neighbours within submap_length_m / 2 along the path, placed by the current
+  // estimates, as the odometry registers scans to its local map. Several viewpoints fill the gaps
+  // between one scan's sparse rings, whose planes bias a single pair by a few mm and tenths of a
+  // degree of tilt. 0 keeps the single pair.
+  double submap_length_m = 4.0;  // [m] path around each keyframe of the pair merged into its submap
+  double submap_voxel_m = 0.2;   // [m] voxel of the merged submaps
+  // [m] Geman-McClure kernel (GicpConfig::robust_plane_distance_m) of the narrow-gate
+  // registrations: the coarse path and the submaps. Two views, and even more two submaps of
+  // different stretches of the path, each hold surfaces the other lacks; those pair with surfaces
+  // nearby and, under least squares, tilted and shifted loops by up to 0.4 deg and 2 cm. 0: least
+  // squares.
+  double robust_plane_distance_m = 0.03;
 
   template <class V>
   void visit(V& v) {
@@ -46,6 +59,9 @@ struct LoopRegistrationConfig {
     v("score_min_overlap", score_min_overlap);
     v("information_scale", information_scale);
     v("tilt_information_scale", tilt_information_scale);
+    v("submap_length_m", submap_length_m);
+    v("submap_voxel_m", submap_voxel_m);
+    v("robust_plane_distance_m", robust_plane_distance_m);
   }
   void validate() const;
 };

@@ -15,7 +15,9 @@
 // cosg.min_loop_interval_m of travel after the last loop does not search: the path since was just
 // corrected, a further loop would be redundant (Sec. III-D).
 //
-// A loop's information is the GICP Hessian at the result (the unit-less plane covariances of
+// An accepted pair is registered once more between submaps (each keyframe's cloud merged with its
+// neighbours' along the path, registration.submap_length_m), which gives the loop's pose. A
+// loop's information is the GICP Hessian at that result (the unit-less plane covariances of
 // gicp.h, as for the odometry's keyframe information) times registration.information_scale, its
 // roll and pitch further damped by registration.tilt_information_scale.
 //
@@ -123,9 +125,21 @@ class LoopDetector {
   };
 
   /// GICP of the query against the candidate from `guess`; scored unless `score` is false.
-  Registration registerPair(uint32_t candidate, uint32_t query, const Pose3& guess, double gate_m,
-                            bool score = true) const;
-  LoopClosure makeLoop(const Registration& r, uint32_t query, LoopPath path) const;
+  Registration registerPair(uint32_t candidate, uint32_t query, const Pose3& guess,
+                            const GicpConfig& gicp, bool score = true) const;
+  /// The registration settings under the correspondence gate `gate_m`, with the robust kernel
+  /// (registration.robust_plane_distance_m) or plain least squares (wide gates, whose pairs
+  /// must pull a pose from far).
+  GicpConfig gicpConfig(double gate_m, bool robust) const;
+  /// The loop of an accepted registration: its pose refined between submaps, with information.
+  /// Counts the refinement in `detection`.
+  LoopClosure makeLoop(const Registration& r, uint32_t query, LoopPath path,
+                       LoopDetection* detection) const;
+  /// The cloud of keyframe `center` merged with those of its neighbours within
+  /// submap_length_m / 2 of travel, in the frame of `center` by the current estimates. Only
+  /// keyframes nearer along the path to `center` than to `other` (the pair's other keyframe) join,
+  /// so the two submaps of a loop never share a scan. Null when no neighbour holds a cloud.
+  GicpCloud::ConstPtr submap(uint32_t center, uint32_t other) const;
   bool isRecent(const Keyframe& candidate, uint32_t candidate_id, const Keyframe& query,
                 uint32_t query_id) const;
   /// Less than `interval_m` of travel since the last accepted loop's query.

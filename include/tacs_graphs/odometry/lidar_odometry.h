@@ -30,6 +30,11 @@ struct OdometryConfig {
   // map lacks pair with other surfaces up to a metre away and can drag a scan along a corridor;
   // the narrow pass keeps only the close pairs.
   double refine_correspondence_distance_m = 0.5;
+  // [m] robust kernel of that second alignment (GicpConfig::robust_plane_distance_m; 0: least
+  // squares). The narrow gate still pairs a surface the map lacks with one up to 0.5 m away
+  // (a wall behind a cabinet first seen, the far side of a thin wall); under least squares such
+  // pairs shifted scans by 2-4 cm along corridors for a few scans until the next keyframe.
+  double refine_robust_plane_distance_m = 0.03;
   double min_inlier_ratio = 0.3;     // registrations with fewer inliers are rejected
   double max_correction_m = 1.0;     // [m] a registration may move the guess at most this far
   double max_correction_deg = 30.0;  // [deg] ... and rotate it at most this much
@@ -49,6 +54,7 @@ struct OdometryConfig {
     v("max_time_gap_s", max_time_gap_s);
     v("recovery_correspondence_distance_m", recovery_correspondence_distance_m);
     v("refine_correspondence_distance_m", refine_correspondence_distance_m);
+    v("refine_robust_plane_distance_m", refine_robust_plane_distance_m);
     v("min_inlier_ratio", min_inlier_ratio);
     v("max_correction_m", max_correction_m);
     v("max_correction_deg", max_correction_deg);

@@ -19,6 +19,10 @@ void LoopRegistrationConfig::validate() const {
   requireConfig(information_scale > 0.0, p + "information_scale", "must be > 0");
   requireConfig(tilt_information_scale > 0.0 && tilt_information_scale <= 1.0,
                 p + "tilt_information_scale", "must be in (0, 1]");
+  requireConfig(submap_length_m >= 0.0, p + "submap_length_m", "must be >= 0 (0 = single pair)");
+  requireConfig(submap_voxel_m > 0.0, p + "submap_voxel_m", "must be > 0");
+  requireConfig(robust_plane_distance_m >= 0.0, p + "robust_plane_distance_m",
+                "must be >= 0 (0 = least squares)");
 }
 
 void CosgLoopConfig::validate() const {

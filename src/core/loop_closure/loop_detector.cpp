@@ -13,10 +13,10 @@ namespace tacs {
 
 namespace {
 
-// GicpCloud covariances are plane-regularised, C = I - (1 - kFlat) n n^T with kFlat = 1e-3
-// (gicp.h), so the normal needs no eigen decomposition: n n^T = (I - C) / (1 - kFlat). A point
-// with too few neighbours has C = I (trace 3) and no normal.
-constexpr double kFlat = 1e-3;
+// GicpCloud covariances are plane-regularised, C = I - (1 - kFlat) n n^T (gicp.h), so the normal
+// needs no eigen decomposition: n n^T = (I - C) / (1 - kFlat). A point with too few neighbours
+// has C = I (trace 3) and no normal.
+constexpr double kFlat = kGicpPlaneVariance;
 bool hasNormal(const Eigen::Matrix3d& C) { return C.trace() < 2.5; }
 double squaredNormalZ(const Eigen::Matrix3d& C) { return (1.0 - C(2, 2)) / (1.0 - kFlat); }
 double squaredPlaneDistance(const Eigen::Matrix3d& C, const Eigen::Vector3d& r) {
@@ -126,14 +126,19 @@ double LoopDetector::matchScore(uint32_t candidate_id, uint32_t query_id,
          std::max(static_cast<double>(overlap), rc.score_min_overlap * scored);
 }
 
-LoopDetector::Registration LoopDetector::registerPair(uint32_t candidate, uint32_t query,
-                                                      const Pose3& guess, double gate_m,
-                                                      bool score) const {
+GicpConfig LoopDetector::gicpConfig(double gate_m, bool robust) const {
   GicpConfig gc;
   gc.k_neighbors = config_.registration.k_neighbors;
   gc.max_iterations = config_.registration.max_iterations;
   gc.num_threads = config_.registration.num_threads;
   gc.max_correspondence_distance_m = gate_m;
+  if (robust) gc.robust_plane_distance_m = config_.registration.robust_plane_distance_m;
+  return gc;
+}
+
+LoopDetector::Registration LoopDetector::registerPair(uint32_t candidate, uint32_t query,
+                                                      const Pose3& guess, const GicpConfig& gc,
+                                                      bool score) const {
   Gicp gicp(gc);
   gicp.setTarget(keyframes_.at(candidate).cloud);
   gicp.setSource(keyframes_.at(query).cloud);
@@ -144,7 +149,44 @@ LoopDetector::Registration LoopDetector::registerPair(uint32_t candidate, uint32
   return r;
 }
 
-LoopClosure LoopDetector::makeLoop(const Registration& r, uint32_t query, LoopPath path) const {
+GicpCloud::ConstPtr LoopDetector::submap(uint32_t center, uint32_t other) const {
+  const LoopRegistrationConfig& rc = config_.registration;
+  const double half = 0.5 * rc.submap_length_m;
+  const auto center_it = keyframes_.find(center);
+  const double along = center_it->second.accum_distance;
+  const double other_along = keyframes_.at(other).accum_distance;
+  const Pose3 T_center_map = center_it->second.T_map_base.inverse();
+  PointCloud merged;
+  const auto add = [&](const Keyframe& kf) {
+    const Eigen::Affine3d T = T_center_map * kf.T_map_base;
+    for (const Eigen::Vector3d& p : kf.cloud->points()) {
+      pcl::PointXYZI q;
+      q.getVector3fMap() = (T * p).cast<float>();
+      q.intensity = 0.0f;
+      merged.points.push_back(q);
+    }
+  };
+  add(center_it->second);
+  size_t neighbours = 0;
+  // Ids are in arrival order, so travel grows with the id: walk out both ways from the center.
+  const auto visit = [&](auto begin, auto end) {
+    for (auto it = begin; it != end; ++it) {
+      const double d = std::abs(it->second.accum_distance - along);
+      if (d > half) break;
+      if (!it->second.cloud || d >= std::abs(it->second.accum_distance - other_along)) continue;
+      add(it->second);
+      ++neighbours;
+    }
+  };
+  visit(std::next(center_it), keyframes_.end());
+  visit(std::make_reverse_iterator(center_it), keyframes_.rend());
+  if (neighbours == 0) return nullptr;
+  return GicpCloud::build(voxelDownsample(merged, rc.submap_voxel_m), rc.k_neighbors,
+                          rc.num_threads);
+}
+
+LoopClosure LoopDetector::makeLoop(const Registration& r, uint32_t query, LoopPath path,
+                                   LoopDetection* detection) const {
   LoopClosure loop;
   loop.from = r.candidate;
   loop.to = query;
@@ -152,15 +194,25 @@ LoopClosure LoopDetector::makeLoop(const Registration& r, uint32_t query, LoopPa
   loop.score = r.score;
   loop.fitness = r.gicp.fitness;
   loop.path = path;
-  // The information is the GICP Hessian at the result under the narrow (coarse) gate, whatever
-  // gate found the pose, so loops from both paths weigh alike in the graph.
-  GicpConfig gc;
-  gc.k_neighbors = config_.registration.k_neighbors;
-  gc.num_threads = config_.registration.num_threads;
-  gc.max_correspondence_distance_m = config_.cosg.coarse_correspondence_m;
-  Gicp gicp(gc);
+  // The pose is refined and the information taken under the narrow (coarse) gate, whatever gate
+  // found the pair, so loops from every path weigh alike in the graph.
+  Gicp gicp(gicpConfig(config_.cosg.coarse_correspondence_m, true));
   gicp.setTarget(keyframes_.at(r.candidate).cloud);
   gicp.setSource(keyframes_.at(query).cloud);
+  if (config_.registration.submap_length_m > 0.0) {
+    const GicpCloud::ConstPtr target = submap(r.candidate, query);
+    const GicpCloud::ConstPtr source = submap(query, r.candidate);
+    if (target) gicp.setTarget(target);
+    if (source) gicp.setSource(source);
+    if (target || source) {
+      const GicpResult refined = gicp.align(loop.T_from_to);
+      ++detection->registrations;
+      if (refined.inliers > 0) {
+        loop.T_from_to = refined.T_target_source;
+        loop.fitness = refined.fitness;
+      }
+    }
+  }
   // Roll and pitch damped by tilt_information_scale (loop_closure_config.h): S H S stays positive
   // definite and scales their diagonal entries by the factor.
   Eigen::Matrix<double, 6, 1> s = Eigen::Matrix<double, 6, 1>::Ones();
@@ -243,6 +295,7 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
       return std::abs(keyframes_.at(loop.from).accum_distance - along) < cc.partition_length_m;
     });
   };
+  const GicpConfig coarse_gicp = gicpConfig(cc.coarse_correspondence_m, true);
   std::vector<std::vector<Registration>> coarse(parts.selected.size());
   for (size_t s = 0; s < parts.selected.size(); ++s) {
     std::vector<std::pair<double, uint32_t>> near;  // (distance, id)
@@ -262,7 +315,7 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
     }
     for (const auto& [d, id] : near) {
       const Pose3 guess = keyframes_.at(id).T_map_base.inverse() * query.T_map_base;
-      coarse[s].push_back(registerPair(id, query_id, guess, cc.coarse_correspondence_m));
+      coarse[s].push_back(registerPair(id, query_id, guess, coarse_gicp));
       det.registered.push_back(id);
       det.coarse_scores.push_back(coarse[s].back().score);
       ++det.registrations;
@@ -270,7 +323,7 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
     auto best = std::max_element(coarse[s].begin(), coarse[s].end(),
                                  [](const auto& a, const auto& b) { return a.score < b.score; });
     if (best != coarse[s].end() && best->score >= cc.s_coarse && !repeats_loop(best->candidate)) {
-      det.loops.push_back(makeLoop(*best, query_id, LoopPath::kCoarse));
+      det.loops.push_back(makeLoop(*best, query_id, LoopPath::kCoarse, &det));
     }
   }
   std::sort(det.loops.begin(), det.loops.end(),
@@ -300,7 +353,8 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
     const auto& schedule = cc.fine_correspondence_schedule_m;
     for (size_t stage = 0; stage < schedule.size(); ++stage) {
       const bool last = stage + 1 == schedule.size();
-      refined = registerPair(w->candidate, query_id, pose, schedule[stage], last);
+      refined =
+          registerPair(w->candidate, query_id, pose, gicpConfig(schedule[stage], false), last);
       pose = refined.gicp.T_target_source;
       ++det.registrations;
     }
@@ -309,7 +363,7 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
     if (!best_fine || refined.score > best_fine->score) best_fine = refined;
   }
   if (best_fine && best_fine->score >= cc.s_coarse) {
-    det.loops.push_back(makeLoop(*best_fine, query_id, LoopPath::kFine));
+    det.loops.push_back(makeLoop(*best_fine, query_id, LoopPath::kFine, &det));
   }
   finish(&det, watch.elapsedMs());
   return det;

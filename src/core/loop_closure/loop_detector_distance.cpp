@@ -31,14 +31,14 @@ LoopDetection LoopDetector::detectByDistance(uint32_t query_id) {
     }
     det.candidates.push_back(id);
     const Pose3 guess = cand.T_map_base.inverse() * query.T_map_base;
-    Registration r = registerPair(id, query_id, guess, dc.max_correspondence_m);
+    Registration r = registerPair(id, query_id, guess, gicpConfig(dc.max_correspondence_m, false));
     det.registered.push_back(id);
     ++det.registrations;
     if (r.gicp.inliers == 0) continue;
     if (!best || r.gicp.fitness < best->gicp.fitness) best = std::move(r);
   }
   if (best && best->gicp.fitness < dc.fitness_threshold) {
-    det.loops.push_back(makeLoop(*best, query_id, LoopPath::kDistance));
+    det.loops.push_back(makeLoop(*best, query_id, LoopPath::kDistance, &det));
   }
   finish(&det, watch.elapsedMs());
   return det;

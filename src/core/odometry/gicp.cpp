@@ -23,6 +23,8 @@ void GicpConfig::validate() const {
   requireConfig(translation_eps_m > 0.0, "odometry.gicp.translation_eps_m", "must be > 0");
   requireConfig(rotation_eps_deg > 0.0, "odometry.gicp.rotation_eps_deg", "must be > 0");
   requireConfig(num_threads >= 0, "odometry.gicp.num_threads", "must be >= 0 (0 = OpenMP default)");
+  requireConfig(robust_plane_distance_m >= 0.0, "odometry.gicp.robust_plane_distance_m",
+                "must be >= 0 (0 = off)");
 }
 
 namespace {
@@ -51,6 +53,15 @@ struct Correspondence {
   int64_t target = -1;
   Eigen::Matrix3d mahalanobis;
 };
+
+// Geman-McClure: rho(e) = c2 e / (c2 + e) of the squared Mahalanobis distance e, whose
+// derivative (c2 / (c2 + e))^2 weighs the pair in the normal equations (IRLS). c2 <= 0: rho = e.
+double robustCost(double e, double c2) { return c2 > 0.0 ? c2 * e / (c2 + e) : e; }
+double robustWeight(double e, double c2) {
+  if (c2 <= 0.0) return 1.0;
+  const double s = c2 / (c2 + e);
+  return s * s;
+}
 
 }  // namespace
 
@@ -91,6 +102,7 @@ Gicp::Linearization Gicp::linearize(const Pose3& T, const Linearization* previou
   const Eigen::Matrix3d R = T.linear();
   const double max_sq =
       config_.max_correspondence_distance_m * config_.max_correspondence_distance_m;
+  const double kernel_c2 = kernelC2();
   std::vector<Correspondence> pairs(src.size());
   // Between iterations a point's nearest target rarely moves far: the last one bounds the search.
   const std::vector<Correspondence>* hints =
@@ -109,10 +121,12 @@ Gicp::Linearization Gicp::linearize(const Pose3& T, const Linearization* previou
         Eigen::Matrix<double, 3, 6> J;  // d r / d delta for T * Exp(delta)
         J.leftCols<3>() = -R;
         J.rightCols<3>() = R * skew(src[i]);
-        const Eigen::Matrix<double, 6, 3> JtM = J.transpose() * c.mahalanobis;
+        const double e = r.dot(c.mahalanobis * r);
+        const Eigen::Matrix<double, 6, 3> JtM =
+            robustWeight(e, kernel_c2) * J.transpose() * c.mahalanobis;
         acc.H.noalias() += JtM * J;
         acc.g.noalias() += JtM * r;
-        acc.cost += r.dot(c.mahalanobis * r);
+        acc.cost += robustCost(e, kernel_c2);
         acc.sq_dist += dist_sq;
         ++acc.inliers;
       });
@@ -125,6 +139,12 @@ void Gicp::fillScores(const Linearization& lin, GicpResult* result) const {
   result->inlier_ratio = static_cast<double>(lin.inliers) / source_->size();
   result->fitness = lin.inliers ? lin.sq_dist / lin.inliers : 0.0;
   result->information = lin.H;
+}
+
+double Gicp::kernelC2() const {
+  // Two parallel planes a distance d apart: squared Mahalanobis distance d^2 / (2 kFlat).
+  const double d = config_.robust_plane_distance_m;
+  return d * d / (2.0 * kGicpPlaneVariance);
 }
 
 GicpResult Gicp::evaluate(const Pose3& T_target_source) const {
@@ -149,6 +169,7 @@ GicpResult Gicp::align(const Pose3& initial_guess) const {
   const auto& src = source_->points();
   const auto& tgt = target_->points();
   const double rot_eps = config_.rotation_eps_deg * M_PI / 180.0;
+  const double kernel_c2 = kernelC2();
 
   Pose3 T = initial_guess;
   Linearization lin = linearize(T, nullptr);
@@ -168,7 +189,7 @@ GicpResult Gicp::align(const Pose3& initial_guess) const {
         const Correspondence& c = lin.pairs[i];
         if (c.target < 0) continue;
         const Eigen::Vector3d r = tgt[c.target] - candidate * src[i];
-        trial_cost += r.dot(c.mahalanobis * r);
+        trial_cost += robustCost(r.dot(c.mahalanobis * r), kernel_c2);
       }
       if (trial_cost <= lin.cost) {
         T = candidate;

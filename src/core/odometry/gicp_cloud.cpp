@@ -80,9 +80,9 @@ Eigen::Matrix3d planeRegularizedCovariance(const std::vector<Eigen::Vector3d>& p
     const Eigen::Vector3d d = points[j] - mean;
     cov.noalias() += d * d.transpose();
   }
-  // V diag(1e-3, 1, 1) V^T = I - (1 - 1e-3) n n^T with n the plane normal (the eigenvector of the
-  // smallest eigenvalue), so only that one vector is needed: it is orthogonal to the rows of
-  // cov - lambda_min I, hence their largest cross product.
+  // V diag(f, 1, 1) V^T = I - (1 - f) n n^T (f = kGicpPlaneVariance) with n the plane normal (the
+  // eigenvector of the smallest eigenvalue), so only that one vector is needed: it is orthogonal
+  // to the rows of cov - lambda_min I, hence their largest cross product.
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
   eig.computeDirect(cov, Eigen::EigenvaluesOnly);
   const Eigen::Matrix3d shifted = cov - eig.eigenvalues()[0] * Eigen::Matrix3d::Identity();
@@ -98,7 +98,7 @@ Eigen::Matrix3d planeRegularizedCovariance(const std::vector<Eigen::Vector3d>& p
     eig.computeDirect(cov);
     normal = eig.eigenvectors().col(0);
   }
-  return Eigen::Matrix3d::Identity() - (1.0 - 1e-3) * normal * normal.transpose();
+  return Eigen::Matrix3d::Identity() - (1.0 - kGicpPlaneVariance) * normal * normal.transpose();
 }
 
 GicpCloud::ConstPtr GicpCloud::build(const PointCloud& cloud, int k_neighbors, int num_threads) {

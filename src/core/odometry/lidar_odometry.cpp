@@ -23,6 +23,8 @@ void OdometryConfig::validate() const {
                 "odometry.recovery_correspondence_distance_m", "must be > 0");
   requireConfig(refine_correspondence_distance_m >= 0.0,
                 "odometry.refine_correspondence_distance_m", "must be >= 0 (0 = off)");
+  requireConfig(refine_robust_plane_distance_m >= 0.0, "odometry.refine_robust_plane_distance_m",
+                "must be >= 0 (0 = least squares)");
   requireConfig(min_inlier_ratio >= 0.0 && min_inlier_ratio <= 1.0, "odometry.min_inlier_ratio",
                 "must be in [0, 1]");
   requireConfig(max_correction_m > 0.0, "odometry.max_correction_m", "must be > 0");
@@ -152,9 +154,10 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan) {
   const Pose3 guess = predict(stamp, &reset);
   result.motion_prior_reset = reset;
   // Aligns the scan to the local map from `from` under the correspondence gate `gate_m`.
-  const auto align = [&](double gate_m, const Pose3& from) {
+  const auto align = [&](double gate_m, const Pose3& from, double robust_m) {
     GicpConfig gated = config_.gicp;
     gated.max_correspondence_distance_m = gate_m;
+    if (robust_m > 0.0) gated.robust_plane_distance_m = robust_m;
     Gicp gicp(gated);
     gicp.setTarget(local_map_);
     gicp.setSource(scan_gicp);
@@ -163,16 +166,17 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan) {
   const double gate_m = config_.gicp.max_correspondence_distance_m;
   Pose3 start = guess;
   if (reset) {  // no motion prior: a coarse pass with wide gating widens the basin
-    start =
-        align(std::max(config_.recovery_correspondence_distance_m, gate_m), guess).T_target_source;
+    start = align(std::max(config_.recovery_correspondence_distance_m, gate_m), guess, 0.0)
+                .T_target_source;
   }
-  result.registration = align(gate_m, start);
+  result.registration = align(gate_m, start, 0.0);
   const double refine_m = config_.refine_correspondence_distance_m;
   if (refine_m > 0.0 && refine_m < gate_m) {
     // The inlier test below stays on the wide gate's pairs: the narrow gate leaves out far
     // points by design.
     result.registration.T_target_source =
-        align(refine_m, result.registration.T_target_source).T_target_source;
+        align(refine_m, result.registration.T_target_source, config_.refine_robust_plane_distance_m)
+            .T_target_source;
   }
   const GicpResult& reg = result.registration;
   if (reg.inlier_ratio < config_.min_inlier_ratio) {
