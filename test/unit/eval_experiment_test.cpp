@@ -3,10 +3,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include "common/test_paths.h"
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/eval/eval_report.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
-#include "common/test_paths.h"
 
 namespace tacs {
 namespace {
@@ -22,15 +22,18 @@ TEST(EvalExperiment, MergesNestedOverridesIntoTheBase) {
 
 TEST(EvalExperiment, ShippedMethodsLoadAndMakeValidConfigurations) {
   const std::string dir = test::sourceDir() + "/config";
-  const auto methods = loadEvalMethods(dir + "/eval/methods.yaml");
-  ASSERT_FALSE(methods.empty());
   const nlohmann::json base = loadYamlAsJson(dir + "/default.yaml");
-  for (const auto& m : methods) {
-    PipelineConfig config;
-    std::vector<std::string> unknown;
-    EXPECT_NO_THROW(configFromJson(mergeJson(base, m.overrides), m.name, &config, &unknown))
-        << m.name;
-    EXPECT_TRUE(unknown.empty()) << m.name << ": " << (unknown.empty() ? "" : unknown[0]);
+  for (const char* file : {"methods.yaml", "loop_registration_ablation.yaml"}) {
+    const auto methods = loadEvalMethods(dir + "/eval/" + file);
+    ASSERT_FALSE(methods.empty()) << file;
+    for (const auto& m : methods) {
+      PipelineConfig config;
+      std::vector<std::string> unknown;
+      EXPECT_NO_THROW(configFromJson(mergeJson(base, m.overrides), m.name, &config, &unknown))
+          << file << ": " << m.name;
+      EXPECT_TRUE(unknown.empty())
+          << file << ": " << m.name << ": " << (unknown.empty() ? "" : unknown[0]);
+    }
   }
 }
 
