@@ -13,14 +13,15 @@ namespace tacs {
 
 namespace {
 
-// GicpCloud covariances are plane-regularised, C = I - (1 - kFlat) n n^T (gicp.h), so the normal
-// needs no eigen decomposition: n n^T = (I - C) / (1 - kFlat). A point with too few neighbours
-// has C = I (trace 3) and no normal.
-constexpr double kFlat = kGicpPlaneVariance;
+// GicpCloud covariances are plane-regularised, C = I - (1 - f) n n^T with f = kGicpPlaneVariance
+// (gicp.h), so the normal needs no eigen decomposition: n n^T = (I - C) / (1 - f). A point with
+// too few neighbours has C = I (trace 3) and no normal.
 bool hasNormal(const Eigen::Matrix3d& C) { return C.trace() < 2.5; }
-double squaredNormalZ(const Eigen::Matrix3d& C) { return (1.0 - C(2, 2)) / (1.0 - kFlat); }
+double squaredNormalZ(const Eigen::Matrix3d& C) {
+  return (1.0 - C(2, 2)) / (1.0 - kGicpPlaneVariance);
+}
 double squaredPlaneDistance(const Eigen::Matrix3d& C, const Eigen::Vector3d& r) {
-  return std::max(0.0, (r.squaredNorm() - r.dot(C * r)) / (1.0 - kFlat));
+  return std::max(0.0, (r.squaredNorm() - r.dot(C * r)) / (1.0 - kGicpPlaneVariance));
 }
 
 // Fewer wall-like points than this cannot tell a right alignment from a wrong one.
@@ -157,6 +158,7 @@ GicpCloud::ConstPtr LoopDetector::submap(uint32_t center, uint32_t other) const 
   const double other_along = keyframes_.at(other).accum_distance;
   const Pose3 T_center_map = center_it->second.T_map_base.inverse();
   PointCloud merged;
+  merged.points.reserve(8 * center_it->second.cloud->points().size());
   const auto add = [&](const Keyframe& kf) {
     const Eigen::Affine3d T = T_center_map * kf.T_map_base;
     for (const Eigen::Vector3d& p : kf.cloud->points()) {

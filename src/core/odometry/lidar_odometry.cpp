@@ -153,23 +153,25 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan) {
   bool reset = false;
   const Pose3 guess = predict(stamp, &reset);
   result.motion_prior_reset = reset;
-  // Aligns the scan to the local map from `from` under the correspondence gate `gate_m`.
+  // Aligns the scan to the local map from `from` under the correspondence gate `gate_m` and the
+  // robust kernel `robust_m` (0: least squares).
   const auto align = [&](double gate_m, const Pose3& from, double robust_m) {
     GicpConfig gated = config_.gicp;
     gated.max_correspondence_distance_m = gate_m;
-    if (robust_m > 0.0) gated.robust_plane_distance_m = robust_m;
+    gated.robust_plane_distance_m = robust_m;
     Gicp gicp(gated);
     gicp.setTarget(local_map_);
     gicp.setSource(scan_gicp);
     return gicp.align(from);
   };
   const double gate_m = config_.gicp.max_correspondence_distance_m;
+  const double robust_m = config_.gicp.robust_plane_distance_m;
   Pose3 start = guess;
   if (reset) {  // no motion prior: a coarse pass with wide gating widens the basin
-    start = align(std::max(config_.recovery_correspondence_distance_m, gate_m), guess, 0.0)
+    start = align(std::max(config_.recovery_correspondence_distance_m, gate_m), guess, robust_m)
                 .T_target_source;
   }
-  result.registration = align(gate_m, start, 0.0);
+  result.registration = align(gate_m, start, robust_m);
   const double refine_m = config_.refine_correspondence_distance_m;
   if (refine_m > 0.0 && refine_m < gate_m) {
     // The inlier test below stays on the wide gate's pairs: the narrow gate leaves out far
