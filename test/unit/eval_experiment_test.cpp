@@ -23,7 +23,8 @@ TEST(EvalExperiment, MergesNestedOverridesIntoTheBase) {
 TEST(EvalExperiment, ShippedMethodsLoadAndMakeValidConfigurations) {
   const std::string dir = test::sourceDir() + "/config";
   const nlohmann::json base = loadYamlAsJson(dir + "/default.yaml");
-  for (const char* file : {"methods.yaml", "loop_registration_ablation.yaml"}) {
+  for (const char* file :
+       {"methods.yaml", "loop_registration_ablation.yaml", "loop_information_ablation.yaml"}) {
     const auto methods = loadEvalMethods(dir + "/eval/" + file);
     ASSERT_FALSE(methods.empty()) << file;
     for (const auto& m : methods) {
