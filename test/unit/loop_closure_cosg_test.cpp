@@ -126,9 +126,32 @@ TEST(LoopClosureCosg, LargeInitialErrorClosesThroughTheFinePathOnly) {
     EXPECT_GE(r.detection.loops.front().score, detector.config().cosg.s_coarse);
     expectCorrect(r.detection.loops.front(), r.truth_query);
     EXPECT_EQ(detector.stats().fine_loops, 1);
-    // 3 coarse registrations, the 3 weak matches refined in 3 stages each, the loop's submaps.
-    EXPECT_EQ(r.detection.registrations, 3 + 3 * 3 + 1);
+    // 3 coarse registrations and the 3 weak matches refined in 3 stages each.
+    EXPECT_EQ(r.detection.registrations, 3 + 3 * 3);
   }
+}
+
+TEST(LoopClosureCosg, FinePathStopsWhenTheWideGatesReturnToTheCoarsePose) {
+  // Exact estimates, but S_coarse out of reach (as in clutter, where right alignments score
+  // below it): the best weak match refined from the estimate comes back to its coarse pose, so
+  // the weaker ones are not refined too.
+  const test::BoxRoom room;
+  LoopClosureConfig config;
+  config.cosg.s_coarse = 0.9999;
+  LoopDetector detector(config);
+  const Revisit r = revisit(&detector, room, Pose3::Identity());
+  ASSERT_EQ(r.detection.coarse_scores.size(), 3u);
+  for (double score : r.detection.coarse_scores) {
+    ASSERT_GE(score, config.cosg.s_fine);
+    ASSERT_LT(score, config.cosg.s_coarse);
+  }
+  EXPECT_TRUE(r.detection.loops.empty());
+  ASSERT_EQ(r.detection.refined.size(), 1u);
+  // The best coarse match is the one refined.
+  const double best =
+      *std::max_element(r.detection.coarse_scores.begin(), r.detection.coarse_scores.end());
+  EXPECT_NEAR(r.detection.refined_scores.front(), best, 0.05);
+  EXPECT_EQ(r.detection.registrations, 3 + 3);  // 3 coarse, one weak match in 3 stages
 }
 
 TEST(LoopClosureCosg, AWrongRoomGivesNoLoop) {

@@ -33,12 +33,14 @@ struct LoopRegistrationConfig {
   // 0.05-0.35 deg (yaw 0.01 deg); held at that weight they bend the map's height, which odometry
   // and the vertical walls already level. 1 keeps the Hessian's tilt.
   double tilt_information_scale = 0.01;
-  // An accepted loop's pose is registered once more between submaps: each keyframe's cloud merged
-  // with those of its neighbours within submap_length_m / 2 along the path, placed by the current
-  // estimates, as the odometry registers scans to its local map. Several viewpoints fill the gaps
-  // between one scan's sparse rings, whose planes bias a single pair by a few mm and tenths of a
-  // degree of tilt. 0 keeps the single pair.
-  double submap_length_m = 4.0;  // [m] path around each keyframe of the pair merged into its submap
+  // With submap_length_m > 0 an accepted loop's pose is registered once more between submaps: each
+  // keyframe's cloud merged with those of its neighbours within submap_length_m / 2 along the
+  // path, placed by the current estimates. Several viewpoints fill the gaps between one scan's
+  // sparse rings, and a submap loop cannot settle on a pose 0.1 m off as a single pair of the
+  // distance baseline sometimes does. CoSG-LCD's pairs, chosen by match score, gain nothing from
+  // it (wATE 0.0033 m either way, results/README.md) while it costs 8-60 ms per loop, so the
+  // default is the single pair, as in the paper and hdl_graph_slam (0).
+  double submap_length_m = 0.0;  // [m] path around each keyframe of the pair merged into its submap
   double submap_voxel_m = 0.2;   // [m] voxel of the merged submaps
   // [m] Geman-McClure kernel (GicpConfig::robust_plane_distance_m) of the narrow-gate
   // registrations: the coarse path and the submaps. Two views, and even more two submaps of

@@ -15,11 +15,12 @@
 // cosg.min_loop_interval_m of travel after the last loop does not search: the path since was just
 // corrected, a further loop would be redundant (Sec. III-D).
 //
-// An accepted pair is registered once more between submaps (each keyframe's cloud merged with its
-// neighbours' along the path, registration.submap_length_m), which gives the loop's pose. A
-// loop's information is the GICP Hessian at that result (the unit-less plane covariances of
-// gicp.h, as for the odometry's keyframe information) times registration.information_scale, its
-// roll and pitch further damped by registration.tilt_information_scale.
+// An accepted pair's registration gives the loop's pose; with registration.submap_length_m > 0 it
+// is registered once more between submaps (each keyframe's cloud merged with its neighbours' along
+// the path). A loop's information is the GICP Hessian under the narrow gate at that pose (the
+// unit-less plane covariances of gicp.h, as for the odometry's keyframe information) times
+// registration.information_scale, its roll and pitch further damped by
+// registration.tilt_information_scale.
 //
 // The distance baseline (hdl_graph_slam / S-Graphs+ style) runs on every keyframe: candidates
 // within a fixed xy distance that lie far enough back along the path, the lowest GICP fitness

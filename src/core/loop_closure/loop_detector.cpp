@@ -27,6 +27,15 @@ double squaredPlaneDistance(const Eigen::Matrix3d& C, const Eigen::Vector3d& r) 
 // Fewer wall-like points than this cannot tell a right alignment from a wrong one.
 constexpr size_t kMinScoredPoints = 30;
 
+// Two registrations this close found the same pose (a few GICP iterations' step).
+constexpr double kSamePoseTranslationM = 0.05;
+constexpr double kSamePoseRotationRad = 0.5 * M_PI / 180.0;
+bool settledOn(const Pose3& a, const Pose3& b) {
+  const Pose3 d = a.inverse() * b;
+  return d.translation().norm() < kSamePoseTranslationM &&
+         Eigen::AngleAxisd(d.linear()).angle() < kSamePoseRotationRad;
+}
+
 }  // namespace
 
 const char* loopPathName(LoopPath path) {
@@ -196,8 +205,8 @@ LoopClosure LoopDetector::makeLoop(const Registration& r, uint32_t query, LoopPa
   loop.score = r.score;
   loop.fitness = r.gicp.fitness;
   loop.path = path;
-  // The pose is refined and the information taken under the narrow (coarse) gate, whatever gate
-  // found the pair, so loops from every path weigh alike in the graph.
+  // The information is taken (and a submap refinement runs) under the narrow (coarse) gate,
+  // whatever gate found the pair, so loops from every path weigh alike in the graph.
   Gicp gicp(gicpConfig(config_.cosg.coarse_correspondence_m, true));
   gicp.setTarget(keyframes_.at(r.candidate).cloud);
   gicp.setSource(keyframes_.at(query).cloud);
@@ -363,6 +372,9 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
     det.refined.push_back(refined.candidate);
     det.refined_scores.push_back(refined.score);
     if (!best_fine || refined.score > best_fine->score) best_fine = refined;
+    // The wide gates came back to the coarse pose: the estimate was right and the scene scores
+    // low (clutter), so the weaker matches, seen from the same estimate, would only repeat that.
+    if (settledOn(refined.gicp.T_target_source, w->gicp.T_target_source)) break;
   }
   if (best_fine && best_fine->score >= cc.s_coarse) {
     det.loops.push_back(makeLoop(*best_fine, query_id, LoopPath::kFine, &det));
