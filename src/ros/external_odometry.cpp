@@ -11,8 +11,6 @@ namespace {
 
 constexpr size_t kMaxBufferedPoses = 2000;  // 20 s of odometry at 100 Hz
 
-double angleDeg(const Pose3& T) { return Eigen::AngleAxisd(T.rotation()).angle() * 180.0 / M_PI; }
-
 }  // namespace
 
 ExternalOdometry::ExternalOdometry(const OdometryConfig& config, double sigma_xyz_m,
@@ -76,7 +74,7 @@ OdometryResult ExternalOdometry::process(double stamp, const PointCloud& scan_in
   result.T_odom_base = *pose;
   const Pose3 motion = last_keyframe_pose_.inverse() * *pose;
   if (!has_keyframe_ || motion.translation().norm() >= config_.keyframe_distance_m ||
-      angleDeg(motion) >= config_.keyframe_angle_deg) {
+      rotationAngleDeg(motion) >= config_.keyframe_angle_deg) {
     result.is_keyframe = true;
     result.keyframe_id = next_keyframe_id_++;
     // Handed on at the keyframe grid, as LidarOdometry does (odometry.keyframe_cloud_voxel_m).

@@ -1,10 +1,10 @@
 // Basic types shared by every module of the core.
 #pragma once
 
-#include <Eigen/Geometry>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include <Eigen/Geometry>
 #include <vector>
 
 namespace tacs {
@@ -25,5 +25,8 @@ using Trajectory = std::vector<StampedPose>;
 
 /// Builds a pose from translation (metres) and roll, pitch, yaw (radians, applied as Rz*Ry*Rx).
 Pose3 poseFromXyzRpy(double x, double y, double z, double roll, double pitch, double yaw);
+
+/// The angle of a pose's rotation (about its axis), in degrees.
+double rotationAngleDeg(const Pose3& T);
 
 }  // namespace tacs

@@ -132,8 +132,8 @@ class LoopDetector {
   /// (registration.robust_plane_distance_m) or plain least squares (wide gates, whose pairs
   /// must pull a pose from far).
   GicpConfig gicpConfig(double gate_m, bool robust) const;
-  /// The loop of an accepted registration: its pose refined between submaps, with information.
-  /// Counts the refinement in `detection`.
+  /// The loop of an accepted registration, with information; its pose refined between submaps
+  /// when registration.submap_length_m > 0 (counted in `detection`).
   LoopClosure makeLoop(const Registration& r, uint32_t query, LoopPath path,
                        LoopDetection* detection) const;
   /// The cloud of keyframe `center` merged with those of its neighbours within

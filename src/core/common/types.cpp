@@ -12,4 +12,8 @@ Pose3 poseFromXyzRpy(double x, double y, double z, double roll, double pitch, do
   return pose;
 }
 
+double rotationAngleDeg(const Pose3& T) {
+  return Eigen::AngleAxisd(T.linear()).angle() * 180.0 / M_PI;
+}
+
 }  // namespace tacs

@@ -38,7 +38,7 @@ LoopAccuracy evaluateLoops(const SceneGraph& graph, const Trajectory& ground_tru
       continue;
     }
     const Pose3 error = (gt_from->inverse() * *gt_to).inverse() * loop.relativePose();
-    const double angle_deg = Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / M_PI;
+    const double angle_deg = rotationAngleDeg(error);
     if (error.translation().norm() <= tolerance.translation_m &&
         angle_deg <= tolerance.rotation_deg) {
       ++acc.correct;

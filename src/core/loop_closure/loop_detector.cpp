@@ -29,11 +29,11 @@ constexpr size_t kMinScoredPoints = 30;
 
 // Two registrations this close found the same pose (a few GICP iterations' step).
 constexpr double kSamePoseTranslationM = 0.05;
-constexpr double kSamePoseRotationRad = 0.5 * M_PI / 180.0;
+constexpr double kSamePoseRotationDeg = 0.5;
 bool settledOn(const Pose3& a, const Pose3& b) {
   const Pose3 d = a.inverse() * b;
   return d.translation().norm() < kSamePoseTranslationM &&
-         Eigen::AngleAxisd(d.linear()).angle() < kSamePoseRotationRad;
+         rotationAngleDeg(d) < kSamePoseRotationDeg;
 }
 
 }  // namespace

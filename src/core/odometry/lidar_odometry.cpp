@@ -34,10 +34,6 @@ void OdometryConfig::validate() const {
 
 namespace {
 
-constexpr double kDegToRad = M_PI / 180.0;
-
-double angleDeg(const Pose3& T) { return Eigen::AngleAxisd(T.linear()).angle() / kDegToRad; }
-
 Eigen::Vector3d rotationVector(const Eigen::Matrix3d& R) {
   const Eigen::AngleAxisd aa(R);
   return aa.angle() * aa.axis();
@@ -68,7 +64,7 @@ bool LidarOdometry::isKeyframe(const Pose3& T_odom_base) const {
   if (window_.empty()) return true;
   const Pose3 motion = window_.back().T_odom_base.inverse() * T_odom_base;
   return motion.translation().norm() >= config_.keyframe_distance_m ||
-         angleDeg(motion) >= config_.keyframe_angle_deg;
+         rotationAngleDeg(motion) >= config_.keyframe_angle_deg;
 }
 
 void LidarOdometry::addKeyframe(OdometryResult* result, const GicpCloud::ConstPtr& scan_gicp,
@@ -187,12 +183,12 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan) {
   }
   const Pose3 correction = guess.inverse() * reg.T_target_source;
   if (!reset && (correction.translation().norm() > config_.max_correction_m ||
-                 angleDeg(correction) > config_.max_correction_deg)) {
+                 rotationAngleDeg(correction) > config_.max_correction_deg)) {
     return finish(
         format("registration rejected: it moved the constant-velocity guess by %.2f m "
                "and %.1f deg (limits %.2f m, %.1f deg)",
-               correction.translation().norm(), angleDeg(correction), config_.max_correction_m,
-               config_.max_correction_deg));
+               correction.translation().norm(), rotationAngleDeg(correction),
+               config_.max_correction_m, config_.max_correction_deg));
   }
 
   const double dt = stamp - last_stamp_;
