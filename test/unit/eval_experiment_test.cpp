@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -78,6 +79,30 @@ TEST(EvalExperiment, TransformsWallsAndRoomsWithTheAlignment) {
   EXPECT_NEAR(t.walls.at(0).endpoints[1].x(), 5 - 3, 1e-12);
   EXPECT_NEAR(t.rooms.at(0).center.x(), 4.0, 1e-12);
   EXPECT_NEAR(t.rooms.at(0).free_space[0].y(), 1.0, 1e-12);
+}
+
+TEST(EvalExperiment, PairedDifferenceUsesTheTrialsBothMethodsHold) {
+  // Trial 3 of b is missing: only trials 1, 2 and 4 pair up.
+  const std::map<int, double> a = {{1, 1.0}, {2, 2.0}, {3, 3.0}, {4, 4.0}};
+  const std::map<int, double> b = {{1, 1.5}, {2, 2.1}, {4, 4.4}};
+  const PairedDifference d = pairedDifference(a, b);
+  EXPECT_EQ(d.trials, 3u);
+  EXPECT_EQ(d.a_lower, 3u);
+  EXPECT_NEAR(d.mean, (0.5 + 0.1 + 0.4) / 3.0, 1e-12);
+  // Sample sd of {0.5, 0.1, 0.4} is 0.208167; t(2) = 4.303.
+  EXPECT_NEAR(d.ci95, 4.303 * 0.2081666 / std::sqrt(3.0), 1e-5);
+  // The interval holds 0 here: three trials do not resolve a difference this spread.
+  EXPECT_LT(d.mean - d.ci95, 0.0);
+}
+
+TEST(EvalExperiment, PairedDifferenceOfOneTrialHasNoInterval) {
+  const std::map<int, double> a = {{1, 2.0}};
+  const std::map<int, double> b = {{1, 1.0}, {2, 5.0}};
+  const PairedDifference d = pairedDifference(a, b);
+  EXPECT_EQ(d.trials, 1u);
+  EXPECT_EQ(d.a_lower, 0u);
+  EXPECT_DOUBLE_EQ(d.mean, -1.0);
+  EXPECT_DOUBLE_EQ(d.ci95, 0.0);
 }
 
 }  // namespace

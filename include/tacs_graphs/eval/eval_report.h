@@ -35,7 +35,19 @@ struct MethodSummary {
   double n_loop = 0.0, pr_loop = 0.0, t_ld_s = 0.0, t_fgo_s = 0.0;
   double wall_time_s = 0.0, scans_per_s = 0.0;
   std::vector<RunScores> runs;
+  std::map<int, double> ate_by_trial_m;  // trial -> ATE, for comparisons on the same noise seed
 };
+
+/// Per-trial difference b - a over the trials both hold (the same noise seed, so the world's
+/// noise cancels): its mean, the half width of the mean's 95 % Student-t interval (0 below two
+/// trials), and the trials where a is the lower.
+struct PairedDifference {
+  size_t trials = 0;
+  double mean = 0.0;
+  double ci95 = 0.0;
+  size_t a_lower = 0;
+};
+PairedDifference pairedDifference(const std::map<int, double>& a, const std::map<int, double>& b);
 
 /// Summaries by world name, then by method index; runs without a finished folder are left out.
 std::map<std::string, std::map<size_t, MethodSummary>> summarize(const std::vector<EvalRun>& runs,

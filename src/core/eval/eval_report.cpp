@@ -46,8 +46,24 @@ double stddev(const std::vector<double>& v) {
   return v.size() < 2 ? 0.0 : std::sqrt(s / v.size());
 }
 
-MethodSummary summarizeRuns(std::vector<RunScores> runs) {
+// 97.5 % quantile of Student's t with `dof` degrees of freedom (two-sided 95 % interval).
+double studentT975(size_t dof) {
+  static const double kTable[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306,
+                                  2.262,  2.228, 2.201, 2.179, 2.160, 2.145, 2.131, 2.120,
+                                  2.110,  2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064,
+                                  2.060,  2.056, 2.052, 2.048, 2.045, 2.042};
+  constexpr size_t kRows = sizeof(kTable) / sizeof(kTable[0]);
+  if (dof == 0) return 0.0;
+  return dof <= kRows ? kTable[dof - 1] : 1.96;
+}
+
+MethodSummary summarizeRuns(std::vector<std::pair<int, RunScores>> trial_runs) {
   MethodSummary s;
+  std::vector<RunScores> runs;
+  for (auto& [trial, r] : trial_runs) {
+    s.ate_by_trial_m[trial] = r.ate_m;
+    runs.push_back(std::move(r));
+  }
   s.trials = runs.size();
   std::vector<double> ate, odom, path, rooms, loops, pr, ld, fgo, wall, rate;
   std::vector<double> precision, recall, f1, room_dice;
@@ -87,13 +103,33 @@ bool runsStage(const EvalMethod& method, const char* section) {
 
 }  // namespace
 
+PairedDifference pairedDifference(const std::map<int, double>& a, const std::map<int, double>& b) {
+  std::vector<double> d;
+  PairedDifference out;
+  for (const auto& [trial, va] : a) {
+    const auto it = b.find(trial);
+    if (it == b.end()) continue;
+    d.push_back(it->second - va);
+    if (va < it->second) ++out.a_lower;
+  }
+  out.trials = d.size();
+  out.mean = mean(d);
+  if (d.size() >= 2) {
+    double ss = 0.0;
+    for (double x : d) ss += (x - out.mean) * (x - out.mean);
+    const double sample_sd = std::sqrt(ss / static_cast<double>(d.size() - 1));
+    out.ci95 = studentT975(d.size() - 1) * sample_sd / std::sqrt(static_cast<double>(d.size()));
+  }
+  return out;
+}
+
 std::map<std::string, std::map<size_t, MethodSummary>> summarize(const std::vector<EvalRun>& runs,
                                                                  size_t method_count,
                                                                  std::vector<std::string>* errors) {
-  std::map<std::string, std::map<size_t, std::vector<RunScores>>> scores;
+  std::map<std::string, std::map<size_t, std::vector<std::pair<int, RunScores>>>> scores;
   for (const auto& r : runs) {
     try {
-      scores[r.world_name][r.method_index].push_back(scoreRunFolder(r.dir));
+      scores[r.world_name][r.method_index].emplace_back(r.trial, scoreRunFolder(r.dir));
     } catch (const std::exception& e) {
       if (errors) errors->push_back(e.what());
     }
@@ -175,6 +211,31 @@ void writeEvalReport(const std::string& out_dir, const std::vector<EvalRun>& run
       weighted += ate * it->second.path_m, length += it->second.path_m;
     }
     md << " " << (length > 0 ? fixed(weighted / length, 4) : "-") << " |\n";
+  }
+
+  if (methods.size() > 1) {
+    md << "\n## ATE against " << methods[0].label << ", trial by trial\n\n"
+       << "Delta ATE = ATE(method) - ATE(" << methods[0].name
+       << ") on the same trial (noise seed), in mm: its mean, the 95 % interval of the mean "
+          "(Student t), and the trials where "
+       << methods[0].name
+       << " is the more accurate. An interval holding 0 is a difference the trials do not "
+          "resolve.\n\n"
+       << "| World | Method | Delta ATE (mm) | 95 % interval (mm) | " << methods[0].name
+       << " better |\n|---|---|---|---|---|\n";
+    for (const auto& [world, by_method] : summaries) {
+      const auto first = by_method.find(0);
+      if (first == by_method.end()) continue;
+      for (const auto& [m, s] : by_method) {
+        if (m == 0) continue;
+        const PairedDifference d = pairedDifference(first->second.ate_by_trial_m, s.ate_by_trial_m);
+        if (d.trials == 0) continue;
+        md << "| " << world << " | " << methods[m].label << " | " << fixed(1000.0 * d.mean, 2)
+           << " | " << fixed(1000.0 * (d.mean - d.ci95), 2) << " .. "
+           << fixed(1000.0 * (d.mean + d.ci95), 2) << " | " << d.a_lower << " of " << d.trials
+           << " |\n";
+      }
+    }
   }
 
   md << "\n## Runs\n\n| World | Method | path (m) | odometry ATE (m) | scans/s | wall time (s) |\n"
