@@ -100,6 +100,14 @@ TEST(LoopClosureCosg, TiltInformationScaleDampsOnlyRollAndPitch) {
   EXPECT_EQ(llt.info(), Eigen::Success);
 }
 
+// Every coarse registration of `d` scored at least S_fine but below S_coarse: weak matches only.
+void expectOnlyWeakMatches(const LoopDetection& d, const CosgLoopConfig& c) {
+  for (double score : d.coarse_scores) {
+    EXPECT_LT(score, c.s_coarse) << "coarse score";
+    EXPECT_GE(score, c.s_fine) << "coarse score";
+  }
+}
+
 TEST(LoopClosureCosg, LargeInitialErrorClosesThroughTheFinePathOnly) {
   const test::BoxRoom room;
   // 1 m and 10 deg off: the narrow gate of the coarse path settles on a wrong pose for every
@@ -114,10 +122,7 @@ TEST(LoopClosureCosg, LargeInitialErrorClosesThroughTheFinePathOnly) {
     EXPECT_TRUE(coarse.detection.loops.empty());
     // The nearest max_candidates_per_partition (3) of the 5 first-visit keyframes.
     ASSERT_EQ(coarse.detection.coarse_scores.size(), 3u);
-    for (double score : coarse.detection.coarse_scores) {
-      EXPECT_LT(score, coarse_only.cosg.s_coarse) << "coarse score";
-      EXPECT_GE(score, coarse_only.cosg.s_fine) << "coarse score";
-    }
+    expectOnlyWeakMatches(coarse.detection, coarse_only.cosg);
 
     LoopDetector detector{LoopClosureConfig()};
     const Revisit r = revisit(&detector, room, error);
@@ -141,10 +146,7 @@ TEST(LoopClosureCosg, FinePathStopsWhenTheWideGatesReturnToTheCoarsePose) {
   LoopDetector detector(config);
   const Revisit r = revisit(&detector, room, Pose3::Identity());
   ASSERT_EQ(r.detection.coarse_scores.size(), 3u);
-  for (double score : r.detection.coarse_scores) {
-    ASSERT_GE(score, config.cosg.s_fine);
-    ASSERT_LT(score, config.cosg.s_coarse);
-  }
+  expectOnlyWeakMatches(r.detection, config.cosg);
   EXPECT_TRUE(r.detection.loops.empty());
   ASSERT_EQ(r.detection.refined.size(), 1u);
   // The best coarse match is the one refined.

@@ -46,14 +46,13 @@ double stddev(const std::vector<double>& v) {
   return v.size() < 2 ? 0.0 : std::sqrt(s / v.size());
 }
 
-// 97.5 % quantile of Student's t with `dof` degrees of freedom (two-sided 95 % interval).
+// 97.5 % quantile of Student's t with `dof` >= 1 degrees of freedom (two-sided 95 % interval).
 double studentT975(size_t dof) {
   static const double kTable[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306,
                                   2.262,  2.228, 2.201, 2.179, 2.160, 2.145, 2.131, 2.120,
                                   2.110,  2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064,
                                   2.060,  2.056, 2.052, 2.048, 2.045, 2.042};
   constexpr size_t kRows = sizeof(kTable) / sizeof(kTable[0]);
-  if (dof == 0) return 0.0;
   return dof <= kRows ? kTable[dof - 1] : 1.96;
 }
 
@@ -115,10 +114,9 @@ PairedDifference pairedDifference(const std::map<int, double>& a, const std::map
   out.trials = d.size();
   out.mean = mean(d);
   if (d.size() >= 2) {
-    double ss = 0.0;
-    for (double x : d) ss += (x - out.mean) * (x - out.mean);
-    const double sample_sd = std::sqrt(ss / static_cast<double>(d.size() - 1));
-    out.ci95 = studentT975(d.size() - 1) * sample_sd / std::sqrt(static_cast<double>(d.size()));
+    // stddev() divides by n; the interval wants the sample deviation (n - 1): se = sd_n /
+    // sqrt(n-1).
+    out.ci95 = studentT975(d.size() - 1) * stddev(d) / std::sqrt(static_cast<double>(d.size() - 1));
   }
   return out;
 }
