@@ -485,7 +485,40 @@ def construction_site():
     b.write(rotate_deg=30.0)
 
 
+def legged_office():
+    """An office floor walked by a quadruped (S-Graphs' Spot): 1.5 m/s, 90 deg/s turns, a trotting
+    gait's roll, pitch and bounce, an Ouster OS1-64 (uint32 ns `t`) with motion distortion."""
+    b = Builder("legged_office", height=2.8)
+    b.room("office_w", "room", 0, 0, 6, 5)
+    b.room("office_e", "room", 6, 0, 12, 5)
+    b.room("corridor", "corridor", 0, 5, 12, 7.5)
+    b.room("meeting", "room", 3, 7.5, 9, 12)
+    b.door('h', 5, 2.0, 3.2)
+    b.door('h', 5, 8.8, 10.0)
+    b.door('v', 6, 1.5, 2.5)
+    b.door('h', 7.5, 5.4, 6.6)
+    b.line('v', 0, 5, 7.5)
+    b.line('v', 12, 5, 7.5)
+    b.line('h', 7.5, 0, 3)
+    b.line('h', 7.5, 9, 12)
+    b.floor_rect(0, 0, 12, 12)
+    for x in (0.6, 6.6):
+        b.box(x + 1.2, 0.45, 0, 2.4, 0.8, 0.75)
+        b.box(x + 4.6, 4.4, 0, 0.6, 1.0, 1.9)
+    b.table(4.5, 9.0, 7.5, 10.5)
+    b.box(3.5, 11.6, 0, 1.6, 0.5, 1.2)
+    b.path([[1.5, 6.2], [2.6, 6.2], [2.6, 2.5], [4.5, 2.5], [4.5, 1.8], [9.4, 1.8], [9.4, 3.5],
+            [9.4, 6.2], [6.0, 6.2], [6.0, 8.3], [3.8, 8.3], [3.8, 11.0], [8.2, 11.0], [8.2, 8.3],
+            [6.0, 8.3], [6.0, 6.2], [1.5, 6.2]],
+           speed=1.5, laps=2, corner=0.4)
+    b.trajectory.update({"max_yaw_rate_dps": 90.0, "max_accel_mps2": 1.5, "jitter_deg": 2.0,
+                         "jitter_z_m": 0.02})
+    b.sensor = {"model": "os1_64", "rate_hz": 10, "mount_height_m": 0.6,
+                "range_noise_std_m": 0.01, "motion_distortion": True, "seed": 1}
+    b.write()
+
+
 if __name__ == "__main__":
     for fn in (smoke, lab_room, corridor_loop, long_corridor, large_hall, open_lobby,
-               cluttered_rooms, construction_site):
+               cluttered_rooms, construction_site, legged_office):
         fn()

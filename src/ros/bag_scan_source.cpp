@@ -15,7 +15,9 @@ namespace {
 constexpr const char* kCloudType = "sensor_msgs/PointCloud2";
 }
 
-BagScanSource::BagScanSource(const std::string& path, const std::string& topic) {
+BagScanSource::BagScanSource(const std::string& path, const std::string& topic,
+                             const PointTimeConfig& point_times)
+    : point_times_(point_times) {
   if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no such file");
   try {
     bag_.open(path, rosbag::bagmode::Read);
@@ -56,7 +58,10 @@ bool BagScanSource::next(Scan* scan) {
   // The header stamp is the scan time; the bag's receive time only stands in when it is unset.
   if (!msg->header.stamp.isZero()) scan->stamp = msg->header.stamp.toSec();
   scan->frame_id = msg->header.frame_id;
-  scan->conversion = fromRosCloud(*msg, &scan->cloud);
+  TimedScan timed = fromRosCloudWithTimes(*msg, scan->stamp, point_times_);
+  scan->cloud = std::move(timed.cloud);
+  scan->conversion = std::move(timed.conversion);
+  scan->times = std::move(timed.times);
   return true;
 }
 

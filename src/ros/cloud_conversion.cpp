@@ -81,11 +81,24 @@ CloudConversionResult reject(CloudConversionResult r, const std::string& why) {
   return r;
 }
 
+const sensor_msgs::PointField* findTimeField(const sensor_msgs::PointCloud2& msg,
+                                             const std::string& request) {
+  if (request == "none") return nullptr;
+  if (request != "auto") return findField(msg, request.c_str());
+  for (const std::string& name : autoTimeFieldNames()) {
+    if (const auto* f = findField(msg, name.c_str())) return f;
+  }
+  return nullptr;
+}
+
 }  // namespace
 
-CloudConversionResult fromRosCloud(const sensor_msgs::PointCloud2& msg, PointCloud* cloud) {
+CloudConversionResult fromRosCloud(const sensor_msgs::PointCloud2& msg, PointCloud* cloud,
+                                   const TimeFieldRequest& times) {
   CloudConversionResult result;
   cloud->clear();
+  if (times.raw) times.raw->clear();
+  const sensor_msgs::PointField* ft = times.raw ? findTimeField(msg, times.field) : nullptr;
   result.points_in = static_cast<size_t>(msg.width) * msg.height;
   const sensor_msgs::PointField* fx = findField(msg, "x");
   const sensor_msgs::PointField* fy = findField(msg, "y");
@@ -103,7 +116,7 @@ CloudConversionResult fromRosCloud(const sensor_msgs::PointCloud2& msg, PointClo
       return reject(result, "field " + f->name + " is not float32/float64");
     }
   }
-  for (const auto* f : {fx, fy, fz, fi}) {
+  for (const auto* f : {fx, fy, fz, fi, ft}) {
     if (f && (datatypeSize(f->datatype) == 0 ||
               f->offset + datatypeSize(f->datatype) > msg.point_step)) {
       return reject(result, "field " + f->name + " does not fit in point_step " +
@@ -118,6 +131,10 @@ CloudConversionResult fromRosCloud(const sensor_msgs::PointCloud2& msg, PointClo
                               std::to_string(static_cast<size_t>(msg.row_step) * msg.height));
   }
   cloud->reserve(result.points_in);
+  if (ft) {
+    result.time_field = ft->name;
+    times.raw->reserve(result.points_in);
+  }
   for (uint32_t row = 0; row < msg.height; ++row) {
     const uint8_t* row_ptr = msg.data.data() + static_cast<size_t>(row) * msg.row_step;
     for (uint32_t col = 0; col < msg.width; ++col) {
@@ -132,6 +149,7 @@ CloudConversionResult fromRosCloud(const sensor_msgs::PointCloud2& msg, PointClo
         continue;
       }
       cloud->push_back(q);
+      if (ft) times.raw->push_back(readValue(p + ft->offset, ft->datatype));
     }
   }
   cloud->width = static_cast<uint32_t>(cloud->size());
@@ -139,6 +157,30 @@ CloudConversionResult fromRosCloud(const sensor_msgs::PointCloud2& msg, PointClo
   cloud->is_dense = true;
   result.ok = true;
   return result;
+}
+
+TimedScan fromRosCloudWithTimes(const sensor_msgs::PointCloud2& msg, double stamp,
+                                const PointTimeConfig& config) {
+  TimedScan scan;
+  if (config.time_field == "none") {
+    scan.conversion = fromRosCloud(msg, &scan.cloud);
+    scan.times.reason = "disabled";
+    scan.times.message = "odometry.point_times.time_field is none";
+    return scan;
+  }
+  std::vector<double> raw;
+  scan.conversion = fromRosCloud(msg, &scan.cloud, {config.time_field, &raw});
+  if (!scan.conversion.ok) return scan;
+  if (scan.conversion.time_field.empty()) {
+    scan.times.reason = "no_field";
+    scan.times.message = config.time_field == "auto"
+                             ? "the cloud has no per-point time field (none of time, t, "
+                               "timestamp, offset_time, time_stamp)"
+                             : "the cloud has no field '" + config.time_field + "'";
+    return scan;
+  }
+  scan.times = resolvePointTimes(scan.conversion.time_field, raw, stamp, config);
+  return scan;
 }
 
 sensor_msgs::PointCloud2 toRosCloud(const PointCloud& cloud, const std::string& frame_id,

@@ -126,8 +126,9 @@ void GicpOdometryNode::processCloud(const sensor_msgs::PointCloud2::ConstPtr& ms
                        std::to_string(*last_stamp_) + ", scan skipped");
     return;
   }
-  PointCloud scan;
-  const CloudConversionResult conv = fromRosCloud(*msg, &scan);
+  TimedScan timed = fromRosCloudWithTimes(*msg, stamp, config_.odometry.point_times);
+  const CloudConversionResult& conv = timed.conversion;
+  PointCloud& scan = timed.cloud;
   if (!conv.ok) {
     warnings_.warn("cloud", WarnOnce::reasonKey(conv.error), conv.error + ", scan skipped");
     return;
@@ -138,8 +139,13 @@ void GicpOdometryNode::processCloud(const sensor_msgs::PointCloud2::ConstPtr& ms
   PointCloud scan_in_base;
   pcl::transformPointCloud(scan, scan_in_base, T_base_sensor.matrix().cast<float>());
 
-  const OdometryResult result =
-      gicp_ ? gicp_->process(stamp, scan_in_base) : external_->process(stamp, scan_in_base);
+  if (!timed.times.ok && timed.times.reason != "disabled") {
+    warnings_.warn("cloud", "point times: " + timed.times.reason,
+                   "no deskew: " + timed.times.message + "; the scan is used as measured");
+  }
+  const std::vector<float>* offsets = timed.times.ok ? &timed.times.offset_s : nullptr;
+  const OdometryResult result = gicp_ ? gicp_->process(stamp, scan_in_base, offsets)
+                                      : external_->process(stamp, scan_in_base);
   if (!result.ok) {
     warnings_.warn("odometry", WarnOnce::reasonKey(result.error), result.error + ", scan skipped");
     return;

@@ -4,6 +4,7 @@
 #include <sensor_msgs/point_cloud2_iterator.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <cmath>
 #include <cstring>
 
 namespace tacs {
@@ -17,8 +18,9 @@ void fillPose(const Pose3& T, geometry_msgs::Point* p, geometry_msgs::Quaternion
 
 }  // namespace
 
-sensor_msgs::PointCloud2 simScanToPointCloud2(const sim::SimScan& scan,
-                                              const std::string& frame_id) {
+sensor_msgs::PointCloud2 simScanToPointCloud2(const sim::SimScan& scan, const std::string& frame_id,
+                                              const std::string& time_field) {
+  const bool ouster = time_field == "t";
   sensor_msgs::PointCloud2 msg;
   msg.header.stamp.fromSec(scan.stamp);
   msg.header.frame_id = frame_id;
@@ -28,7 +30,8 @@ sensor_msgs::PointCloud2 simScanToPointCloud2(const sim::SimScan& scan,
   modifier.setPointCloud2Fields(
       6, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32, "z", 1,
       sensor_msgs::PointField::FLOAT32, "intensity", 1, sensor_msgs::PointField::FLOAT32, "ring", 1,
-      sensor_msgs::PointField::UINT16, "time", 1, sensor_msgs::PointField::FLOAT32);
+      sensor_msgs::PointField::UINT16, ouster ? "t" : "time", 1,
+      ouster ? sensor_msgs::PointField::UINT32 : sensor_msgs::PointField::FLOAT32);
   modifier.resize(scan.points.size());
   msg.is_dense = true;
   msg.is_bigendian = false;
@@ -39,7 +42,12 @@ sensor_msgs::PointCloud2 simScanToPointCloud2(const sim::SimScan& scan,
     std::memcpy(out + 8, &p.z, 4);
     std::memcpy(out + 12, &p.intensity, 4);
     std::memcpy(out + 16, &p.ring, 2);
-    std::memcpy(out + 18, &p.time, 4);
+    if (ouster) {
+      const uint32_t ns = static_cast<uint32_t>(std::llround(double{p.time} * 1e9));
+      std::memcpy(out + 18, &ns, 4);
+    } else {
+      std::memcpy(out + 18, &p.time, 4);
+    }
     out += msg.point_step;
   }
   return msg;
@@ -80,7 +88,7 @@ void SimBagWriter::write(const sim::SimScan& scan) {
     (*header)["callerid"] = "/tacs_sim";
     bag_.write("/tf_static", stamp, tf, header);
   }
-  bag_.write(options_.cloud_topic, stamp, simScanToPointCloud2(scan, options_.sensor_frame));
+  bag_.write(options_.cloud_topic, stamp, simScanToPointCloud2(scan, options_.sensor_frame, options_.time_field));
 
   nav_msgs::Odometry odom;
   odom.header.stamp = stamp;

@@ -23,7 +23,8 @@ namespace {
 void printUsage() {
   std::cout
       << "Usage: tacs_offline (--bag FILE [--topic T] | --world WORLD.json [--seed N]\n"
-         "                    [--duration S]) [--config YAML] --out DIR [--quiet]\n"
+         "                    [--duration S]) [--poses TUM [--poses-frame base|sensor]]\n"
+         "                    [--config YAML] --out DIR [--quiet]\n"
          "Runs odometry, traversability, walls, rooms, loop closure and the factor-graph backend\n"
          "on every scan, as fast as the CPU allows, and writes DIR/: trajectory_tum.txt,\n"
          "odometry_tum.txt, scene_graph.json, timing.json, config.json, map.pcd, map.bt,\n"
@@ -31,6 +32,13 @@ void printUsage() {
          "--topic T      PointCloud2 topic of the bag (default /velodyne_points)\n"
          "--seed N       simulator noise seed (default: the world's)\n"
          "--duration S   simulate only the first S seconds\n"
+         "--poses TUM    take the odometry from this trajectory ('t x y z qx qy qz qw', sorted)\n"
+         "               instead of GICP, interpolated at each scan's stamp; scans outside its\n"
+         "               time span are skipped and counted. Walls, traversability, rooms, loops\n"
+         "               and the backend then run on those poses.\n"
+         "--poses-frame  the frame the poses are of: base (default) or sensor\n"
+         "--reference TUM  a reference trajectory of the base: ATE against it is printed and\n"
+         "               it is kept as DIR/reference_tum.txt\n"
          "--config YAML  configuration (default: built-in defaults = config/default.yaml)\n"
          "The sensor extrinsic comes from the bag's /tf_static (frames.base_frame -> cloud "
          "frame),\n"
@@ -38,7 +46,8 @@ void printUsage() {
 }
 
 struct Options {
-  std::string bag, topic = "/velodyne_points", world, config, out;
+  std::string bag, topic = "/velodyne_points", world, config, out, poses,
+      poses_frame = "base", reference;
   tacs::sim::SimOptions sim;
   bool quiet = false;
 };
@@ -61,6 +70,15 @@ Options parse(int argc, char** argv) {
       o.sim.seed = std::stoull(argv[++i]);
     } else if (arg == "--duration" && has_value) {
       o.sim.duration_s = std::stod(argv[++i]);
+    } else if (arg == "--reference" && has_value) {
+      o.reference = argv[++i];
+    } else if (arg == "--poses" && has_value) {
+      o.poses = argv[++i];
+    } else if (arg == "--poses-frame" && has_value) {
+      o.poses_frame = argv[++i];
+      if (o.poses_frame != "base" && o.poses_frame != "sensor") {
+        throw std::invalid_argument("--poses-frame must be base or sensor");
+      }
     } else if (arg == "--config" && has_value) {
       o.config = argv[++i];
     } else if (arg == "--out" && has_value) {
@@ -81,7 +99,8 @@ struct SensorScan {
   double stamp = 0.0;
   std::string frame_id;
   tacs::PointCloud cloud;
-  std::string error;  // the message could not be used
+  std::string error;        // the message could not be used
+  tacs::PointTimes times;  // per-point times relative to `stamp` (times.ok: usable)
 };
 
 class ScanSource {
@@ -98,8 +117,9 @@ class ScanSource {
 
 class BagSource : public ScanSource {
  public:
-  BagSource(const Options& o, const tacs::FramesConfig& frames)
-      : bag_(o.bag, o.topic), frames_(frames) {}
+  BagSource(const Options& o, const tacs::FramesConfig& frames,
+            const tacs::PointTimeConfig& point_times)
+      : bag_(o.bag, o.topic, point_times), frames_(frames) {}
   bool next(SensorScan* scan) override {
     tacs::BagScanSource::Scan s;
     if (!bag_.next(&s)) return false;
@@ -107,6 +127,7 @@ class BagSource : public ScanSource {
     scan->frame_id = s.frame_id;
     scan->cloud = std::move(s.cloud);
     scan->error = s.conversion.ok ? "" : s.conversion.error;
+    scan->times = std::move(s.times);
     return true;
   }
   size_t size() const override { return bag_.messageCount(); }
@@ -137,14 +158,20 @@ class BagSource : public ScanSource {
 
 class WorldSource : public ScanSource {
  public:
-  explicit WorldSource(const Options& o)
-      : world_(tacs::sim::loadWorld(o.world)), stream_(world_, o.sim) {}
+  WorldSource(const Options& o, const tacs::PointTimeConfig& point_times)
+      : world_(tacs::sim::loadWorld(o.world)), stream_(world_, o.sim), point_times_(point_times) {}
   bool next(SensorScan* scan) override {
     tacs::sim::SimScan s;
     if (!stream_.next(&s)) return false;
     scan->stamp = s.stamp;
     scan->frame_id = "velodyne";
     scan->cloud = tacs::sim::toPointCloud(s);
+    // The times go through the same detection as a bag's field, in the world's convention.
+    const std::string field = stream_.sensor().time_field;
+    if (point_times_.time_field != "none") {
+      scan->times = tacs::resolvePointTimes(field, tacs::sim::rawPointTimes(s, field), s.stamp,
+                                            point_times_);
+    }
     return true;
   }
   size_t size() const override { return stream_.scanCount(); }
@@ -158,6 +185,7 @@ class WorldSource : public ScanSource {
  private:
   tacs::sim::World world_;
   tacs::sim::ScanStream stream_;
+  tacs::PointTimeConfig point_times_;
 };
 
 /// ATE of the optimised keyframes and of the raw odometry when ground truth exists.
@@ -187,11 +215,20 @@ int run(const Options& o) {
   for (const auto& key : loaded.unknown_keys) {
     std::cerr << "warning: " << o.config << ": unknown key '" << key << "' is ignored\n";
   }
+  // Read whole before the first scan: a bad file fails at once, naming the file and line.
+  tacs::Trajectory given_poses;
+  if (!o.poses.empty()) {
+    given_poses = tacs::readTum(o.poses, /*require_increasing=*/true);
+    if (given_poses.size() < 2) throw std::runtime_error(o.poses + ": fewer than 2 poses");
+  }
+  const tacs::Trajectory reference =
+      o.reference.empty() ? tacs::Trajectory() : tacs::readTum(o.reference, true);
   std::unique_ptr<ScanSource> source;
   if (!o.bag.empty()) {
-    source = std::make_unique<BagSource>(o, loaded.config.frames);
+    source = std::make_unique<BagSource>(o, loaded.config.frames,
+                                         loaded.config.odometry.point_times);
   } else {
-    source = std::make_unique<WorldSource>(o);
+    source = std::make_unique<WorldSource>(o, loaded.config.odometry.point_times);
   }
   // Built at the first usable scan, when the sensor extrinsic is known.
   std::unique_ptr<tacs::Pipeline> pipeline_ptr;
@@ -212,10 +249,22 @@ int run(const Options& o) {
       const tacs::Pose3 T_base_sensor = source->baseToSensor(scan.frame_id);
       base_to_sensor = T_base_sensor.cast<float>();
       pipeline_ptr = std::make_unique<tacs::Pipeline>(loaded.config, T_base_sensor);
+      if (!given_poses.empty()) {
+        pipeline_ptr->useGivenPoses(o.poses_frame == "sensor"
+                                        ? tacs::rebaseTrajectory(given_poses, T_base_sensor)
+                                        : given_poses);
+      }
     }
     tacs::PointCloud in_base;
     pcl::transformPointCloud(scan.cloud, in_base, base_to_sensor);
-    const tacs::ScanOutcome outcome = pipeline_ptr->processScan(scan.stamp, in_base);
+    const tacs::PointTimes& times = scan.times;
+    if (!times.ok && !times.reason.empty() && times.reason != "disabled" &&
+        reported.insert("point times: " + times.reason).second) {
+      std::cerr << "\n[tacs_offline] scan " << k << ": no deskew: " << times.message
+                << "; the scan is used as measured (reported once)\n";
+    }
+    const tacs::ScanOutcome outcome =
+        pipeline_ptr->processScan(scan.stamp, in_base, times.ok ? &times.offset_s : nullptr);
     if (!outcome.accepted && reported.insert(outcome.error).second) {
       std::cerr << "\n[tacs_offline] scan " << k << " rejected: " << outcome.error << "\n";
     }
@@ -229,6 +278,16 @@ int run(const Options& o) {
   }
   if (!pipeline_ptr) pipeline_ptr = std::make_unique<tacs::Pipeline>(loaded.config);
   tacs::Pipeline& pipeline = *pipeline_ptr;
+  const tacs::PipelineStats& counts = pipeline.stats();
+  if (!given_poses.empty() && counts.scans > 0 && counts.scans_outside_poses == counts.scans) {
+    throw std::runtime_error(o.poses + ": no scan lies within the poses' time span (" +
+                             std::to_string(given_poses.front().stamp) + " to " +
+                             std::to_string(given_poses.back().stamp) + " s); nothing written");
+  }
+  if (counts.scans_outside_poses > 0) {
+    std::cerr << "\n[tacs_offline] " << counts.scans_outside_poses << " of " << counts.scans
+              << " scans lie outside the time span of " << o.poses << " and were skipped\n";
+  }
   pipeline.finish();
   const double wall_s = watch.elapsedMs() / 1e3;
   if (!o.quiet) std::cerr << "\n";
@@ -239,12 +298,15 @@ int run(const Options& o) {
   const tacs::SceneGraph graph = pipeline.sceneGraph();
   const size_t walls = graph.wallCount();
   std::cout << std::fixed << std::setprecision(2) << "[tacs_offline] " << stats.scans << " scans ("
-            << stats.rejected_scans << " rejected), " << stats.keyframes << " keyframes, " << walls
+            << stats.rejected_scans << " rejected, " << stats.deskewed_scans << " deskewed, "
+            << stats.odometry_recoveries << " recovered), " << stats.keyframes << " keyframes, "
+            << walls
             << " walls (+" << graph.walls.size() - walls << " other planes), " << graph.rooms.size()
             << " rooms, " << wall_s << " s (" << (wall_s > 0 ? stats.scans / wall_s : 0.0)
             << " scans/s), t_FGO " << pipeline.fgoSeconds() << " s, loops " << graph.loops.size()
             << ", t_LD " << pipeline.ldSeconds() << " s -> " << o.out << "\n";
-  printAccuracy(pipeline, source->groundTruth());
+  if (!reference.empty()) tacs::writeTum(o.out + "/reference_tum.txt", reference);
+  printAccuracy(pipeline, reference.empty() ? source->groundTruth() : reference);
   return stats.scans > stats.rejected_scans ? 0 : 1;
 }
 

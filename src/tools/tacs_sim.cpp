@@ -64,7 +64,9 @@ int main(int argc, char** argv) {
     const std::string bag_path = out_dir + "/sequence.bag";
     tacs::Stopwatch watch;
     {
-      tacs::SimBagWriter writer(bag_path, stream.baseToSensor(), tacs::SimBagWriter::Options{});
+      tacs::SimBagWriter::Options bag_options;
+      bag_options.time_field = stream.sensor().time_field;
+      tacs::SimBagWriter writer(bag_path, stream.baseToSensor(), bag_options);
       tacs::sim::SimScan scan;
       size_t k = 0;
       while (stream.next(&scan)) {

@@ -3,6 +3,8 @@
 #include <sensor_msgs/point_cloud2_iterator.h>
 
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "tacs_graphs/ros/cloud_conversion.h"
 
@@ -91,6 +93,81 @@ TEST(CloudConversion, ReadsFloat64CoordinatesAndMissingIntensity) {
   ASSERT_EQ(out.size(), 2u);
   EXPECT_FLOAT_EQ(out[1].x, 1.5f);
   EXPECT_FLOAT_EQ(out[1].intensity, 0.0f);
+}
+
+// A cloud with x y z and one time field of the given type, name and values (a NaN point at 3).
+template <class T>
+sensor_msgs::PointCloud2 timedCloud(const std::string& name, uint8_t type,
+                                    const std::vector<T>& times) {
+  sensor_msgs::PointCloud2 msg;
+  msg.header.stamp.fromSec(1000.0);
+  sensor_msgs::PointCloud2Modifier modifier(msg);
+  modifier.setPointCloud2Fields(4, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1,
+                                sensor_msgs::PointField::FLOAT32, "z", 1,
+                                sensor_msgs::PointField::FLOAT32, name.c_str(), 1, type);
+  modifier.resize(times.size());
+  sensor_msgs::PointCloud2Iterator<float> x(msg, "x"), y(msg, "y"), z(msg, "z");
+  sensor_msgs::PointCloud2Iterator<T> t(msg, name);
+  for (size_t i = 0; i < times.size(); ++i, ++x, ++y, ++z, ++t) {
+    *x = i == 3 ? std::numeric_limits<float>::quiet_NaN() : 1.0f + i;
+    *y = 0.0f;
+    *z = 0.0f;
+    *t = times[i];
+  }
+  return msg;
+}
+
+TEST(CloudConversion, ReadsVelodyneTimeAlignedWithTheKeptPoints) {
+  std::vector<float> times;
+  for (int i = 0; i < 100; ++i) times.push_back(0.001f * i);
+  const TimedScan scan = fromRosCloudWithTimes(
+      timedCloud("time", sensor_msgs::PointField::FLOAT32, times), 1000.0, PointTimeConfig());
+  ASSERT_TRUE(scan.conversion.ok) << scan.conversion.error;
+  EXPECT_EQ(scan.conversion.time_field, "time");
+  ASSERT_TRUE(scan.times.ok) << scan.times.message;
+  ASSERT_EQ(scan.times.offset_s.size(), scan.cloud.size());  // the NaN point dropped from both
+  EXPECT_EQ(scan.cloud.size(), 99u);
+  EXPECT_NEAR(scan.times.offset_s[3], 0.004, 1e-6);  // point 4 follows point 2
+}
+
+TEST(CloudConversion, ReadsOusterNanoseconds) {
+  std::vector<uint32_t> times;
+  for (uint32_t i = 0; i < 100; ++i) times.push_back(i * 1000000u);
+  const TimedScan scan = fromRosCloudWithTimes(
+      timedCloud("t", sensor_msgs::PointField::UINT32, times), 1000.0, PointTimeConfig());
+  ASSERT_TRUE(scan.times.ok) << scan.times.message;
+  EXPECT_EQ(scan.times.unit, "ns");
+  EXPECT_NEAR(scan.times.offset_s.back(), 0.099, 1e-6);
+}
+
+TEST(CloudConversion, ReadsHesaiAbsoluteSeconds) {
+  std::vector<double> times;
+  for (int i = 0; i < 100; ++i) times.push_back(1000.0 + 0.001 * i);
+  const TimedScan scan = fromRosCloudWithTimes(
+      timedCloud("timestamp", sensor_msgs::PointField::FLOAT64, times), 1000.0,
+      PointTimeConfig());
+  ASSERT_TRUE(scan.times.ok) << scan.times.message;
+  EXPECT_TRUE(scan.times.absolute);
+  EXPECT_NEAR(scan.times.offset_s.back(), 0.099, 1e-6);
+}
+
+TEST(CloudConversion, NoTimeFieldOrDisabledGivesAReasonAndKeepsTheScan) {
+  const TimedScan plain = fromRosCloudWithTimes(toRosCloud(makeCloud(5), "s", 1.0), 1.0,
+                                                PointTimeConfig());
+  EXPECT_TRUE(plain.conversion.ok);
+  EXPECT_EQ(plain.cloud.size(), 5u);
+  EXPECT_FALSE(plain.times.ok);
+  EXPECT_EQ(plain.times.reason, "no_field");
+  PointTimeConfig none;
+  none.time_field = "none";
+  std::vector<float> times(10, 0.0f);
+  const TimedScan disabled = fromRosCloudWithTimes(
+      timedCloud("time", sensor_msgs::PointField::FLOAT32, times), 1000.0, none);
+  EXPECT_EQ(disabled.times.reason, "disabled");
+  const TimedScan constant = fromRosCloudWithTimes(
+      timedCloud("time", sensor_msgs::PointField::FLOAT32, times), 1000.0, PointTimeConfig());
+  EXPECT_EQ(constant.times.reason, "constant");
+  EXPECT_EQ(constant.cloud.size(), 9u);
 }
 
 }  // namespace

@@ -32,4 +32,7 @@ struct FramesConfig {
   Pose3 baseToSensor() const;
 };
 
+/// Poses of the sensor (T_world_sensor) as poses of the base: T_world_sensor * T_base_sensor^-1.
+Trajectory rebaseTrajectory(const Trajectory& sensor_poses, const Pose3& T_base_sensor);
+
 }  // namespace tacs

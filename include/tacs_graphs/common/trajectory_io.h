@@ -19,7 +19,8 @@ void writeTum(const std::string& path, const Trajectory& trajectory);
 
 /// Reads a TUM file. Blank lines and '#' comments are skipped; of several poses with the same
 /// stamp the first is kept (MOCAP exports repeat rounded stamps). Throws TrajectoryIoError
-/// "<path>: line N: <reason>".
-Trajectory readTum(const std::string& path);
+/// "<path>: line N: <reason>". With `require_increasing`, a stamp before the previous line's is
+/// such an error too (a trajectory to interpolate in must be sorted).
+Trajectory readTum(const std::string& path, bool require_increasing = false);
 
 }  // namespace tacs

@@ -5,10 +5,15 @@
 
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "tacs_graphs/common/types.h"
+#include "tacs_graphs/odometry/deskew.h"
+#include "tacs_graphs/odometry/floor_level.h"
 #include "tacs_graphs/odometry/gicp.h"
+#include "tacs_graphs/odometry/point_times.h"
 #include "tacs_graphs/odometry/preprocess.h"
 
 namespace tacs {
@@ -16,6 +21,13 @@ namespace tacs {
 struct OdometryConfig {
   PreprocessConfig preprocess;
   GicpConfig gicp;
+  // Where the per-point time of a scan is read from (PointCloud2 field, unit, origin).
+  PointTimeConfig point_times;
+  // Motion compensation from the per-point time: each scan is deskewed with the constant-velocity
+  // guess before registration; with deskew_refine, once more with the registered motion when it
+  // differs from the guess, followed by a short refinement.
+  bool deskew = true;
+  bool deskew_refine = true;
   double keyframe_distance_m = 0.5;  // [m] new keyframe after this translation from the last one
   double keyframe_angle_deg = 15.0;  // [deg] ... or after this rotation
   int local_map_keyframes = 10;      // keyframes in the sliding-window local map
@@ -36,8 +48,28 @@ struct OdometryConfig {
   // pairs shifted scans by 2-4 cm along corridors for a few scans until the next keyframe.
   double refine_robust_plane_distance_m = 0.03;
   double min_inlier_ratio = 0.3;     // registrations with fewer inliers are rejected
-  double max_correction_m = 1.0;     // [m] a registration may move the guess at most this far
-  double max_correction_deg = 30.0;  // [deg] ... and rotate it at most this much
+  // A registration that moves the constant-velocity guess by more than these limits, or that
+  // matches fewer than recovery_min_fit of the scan within fit_distance_m, is retried from
+  // several yaw hypotheses (recovery); the limits widen with the recent motion-model error
+  // (3 sigma), up to max_adaptive_correction_m / _deg, so a hand-held sensor's fast turns are
+  // followed while a wheeled robot's keep the tight default.
+  double max_correction_m = 1.0;     // [m] floor of the translation limit
+  double max_correction_deg = 30.0;  // [deg] floor of the rotation limit
+  double max_adaptive_correction_m = 3.0;     // [m] ceiling of the translation limit
+  double max_adaptive_correction_deg = 90.0;  // [deg] ceiling of the rotation limit
+  double fit_distance_m = 0.3;  // [m] a scan point within this of the map counts as fitting
+  double recovery_min_fit = 0.5;  // share of fitting points below which the scan is re-aligned
+  // ... or below this share of the recent scans' fit (running mean)
+  double recovery_relative_fit = 0.85;
+  // Yaw offsets [deg] tried from the guess when recovering (about the base z axis), each
+  // aligned coarse to fine and scored by its share of fitting points.
+  std::vector<double> recovery_yaw_deg = {0.0, 30.0, -30.0, 60.0, -60.0, 90.0, -90.0, 180.0};
+  double recovery_voxel_m = 0.6;  // [m] source grid of the coarse hypothesis alignments
+  // The first scan's pose is levelled on the floor it sees (a plane at least 0.3 m below the
+  // base, tilted at most level_max_tilt_deg), so a tilted hand-held sensor starts a level map. A
+  // base frame on the floor (a wheeled robot's base_link) sees no floor below it: pose kept.
+  bool level_from_floor = true;
+  double level_max_tilt_deg = 40.0;  // [deg]
   // [m] voxel of the keyframe cloud handed to traversability and walls (0: the odometry's own
   // preprocess.voxel_size_m grid)
   double keyframe_cloud_voxel_m = 0.1;
@@ -46,6 +78,9 @@ struct OdometryConfig {
   void visit(V& v) {
     v("preprocess", preprocess);
     v("gicp", gicp);
+    v("point_times", point_times);
+    v("deskew", deskew);
+    v("deskew_refine", deskew_refine);
     v("keyframe_distance_m", keyframe_distance_m);
     v("keyframe_angle_deg", keyframe_angle_deg);
     v("local_map_keyframes", local_map_keyframes);
@@ -58,6 +93,15 @@ struct OdometryConfig {
     v("min_inlier_ratio", min_inlier_ratio);
     v("max_correction_m", max_correction_m);
     v("max_correction_deg", max_correction_deg);
+    v("max_adaptive_correction_m", max_adaptive_correction_m);
+    v("max_adaptive_correction_deg", max_adaptive_correction_deg);
+    v("fit_distance_m", fit_distance_m);
+    v("recovery_min_fit", recovery_min_fit);
+    v("recovery_relative_fit", recovery_relative_fit);
+    v("recovery_yaw_deg", recovery_yaw_deg);
+    v("recovery_voxel_m", recovery_voxel_m);
+    v("level_from_floor", level_from_floor);
+    v("level_max_tilt_deg", level_max_tilt_deg);
     v("keyframe_cloud_voxel_m", keyframe_cloud_voxel_m);
   }
   void validate() const;
@@ -76,6 +120,10 @@ struct OdometryResult {
   /// order x y z rx ry rz, perturbation in this keyframe's frame. GICP Hessian scale.
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
   bool motion_prior_reset = false;  // the guess was the last pose (no velocity known)
+  bool deskewed = false;            // the scan was motion-compensated from its point times
+  bool recovered = false;           // the guess's alignment failed; a yaw hypothesis won
+  double fit = 0.0;                 // share of scan points within fit_distance_m of the map
+  std::optional<FloorPlane> floor;  // first scan: the floor that levelled the odom frame
   GicpResult registration;
   PreprocessStats preprocess;
   double time_ms = 0.0;
@@ -89,7 +137,12 @@ class LidarOdometry {
   /// data: empty, all-invalid, too sparse or unregistrable scans and non-increasing stamps give
   /// ok = false with a reason and leave the state as it was; a gap longer than max_time_gap_s
   /// resets the constant-velocity guess instead of extrapolating it.
-  OdometryResult process(double stamp, const PointCloud& scan);
+  ///
+  /// `point_offsets_s` (optional, one per point of `scan`): the time of each point relative to
+  /// `stamp` (resolvePointTimes); with them the scan is deskewed to `stamp` before anything
+  /// else sees it, and the keyframe cloud is the deskewed one.
+  OdometryResult process(double stamp, const PointCloud& scan,
+                         const std::vector<float>* point_offsets_s = nullptr);
 
   const OdometryConfig& config() const { return config_; }
   /// Pose of the last accepted scan.
@@ -106,7 +159,23 @@ class LidarOdometry {
     GicpCloud::ConstPtr gicp;  // base frame, with covariances
   };
 
+  // One step of process(), each named for what it does.
   Pose3 predict(double stamp, bool* reset) const;
+  /// The scan deskewed with `velocity` when it has point times, else the scan itself.
+  PointCloud compensate(const PointCloud& scan, const std::vector<float>* offsets,
+                        const BodyVelocity& velocity, bool* deskewed) const;
+  /// Aligns the scan to the local map from the guess, coarse to fine; falls back to the yaw
+  /// hypotheses when the result does not fit or moved the guess beyond the adaptive limits.
+  GicpResult registerScan(const GicpCloud::ConstPtr& scan, const PointCloud& cloud,
+                          const Pose3& guess, bool reset, OdometryResult* result) const;
+  GicpResult align(const GicpCloud::ConstPtr& scan, double gate_m, const Pose3& from,
+                   double robust_m) const;
+  double fitOf(const GicpCloud::ConstPtr& scan, const Pose3& T) const;
+  bool withinLimits(const Pose3& guess, const Pose3& T) const;
+  GicpResult recoverFromHypotheses(const PointCloud& cloud, const GicpCloud::ConstPtr& scan,
+                                   const Pose3& guess) const;
+  void updateMotionModel(double stamp, const Pose3& guess, const Pose3& pose, bool reset);
+  void updateRecentFit(double fit);
   bool isKeyframe(const Pose3& T_odom_base) const;
   void addKeyframe(OdometryResult* result, const GicpCloud::ConstPtr& scan_gicp,
                    const PointCloud::Ptr& cloud);
@@ -121,6 +190,12 @@ class LidarOdometry {
   bool has_velocity_ = false;
   Eigen::Vector3d linear_velocity_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d angular_velocity_ = Eigen::Vector3d::Zero();
+  // Running RMS of the constant-velocity guess's error (translation [m], rotation [rad]): the
+  // adaptive correction limits are 3x these.
+  double model_error_m_ = 0.0;
+  double model_error_rad_ = 0.0;
+  double scan_interval_s_ = 0.0;  // running typical interval between scans
+  double recent_fit_ = 0.0;       // running mean of the accepted scans' fit
   std::deque<Keyframe> window_;
   GicpCloud::ConstPtr local_map_;
   uint32_t next_keyframe_id_ = 0;

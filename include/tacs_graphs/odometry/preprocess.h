@@ -11,12 +11,16 @@ struct PreprocessConfig {
   double min_range_m = 0.5;   // [m] closer returns hit the robot itself
   double max_range_m = 40.0;  // [m] farther returns are sparse and noisy indoors
   double voxel_size_m = 0.2;  // [m] voxel edge of the downsampling grid; 0 disables downsampling
+  // Point budget per scan: a denser result is regridded with a coarser voxel until it fits, so
+  // a 128-beam scan costs about what a 16-beam one does (0: no budget).
+  int max_points = 0;
 
   template <class V>
   void visit(V& v) {
     v("min_range_m", min_range_m);
     v("max_range_m", max_range_m);
     v("voxel_size_m", voxel_size_m);
+    v("max_points", max_points);
   }
   void validate() const;
 };
@@ -25,6 +29,7 @@ struct PreprocessConfig {
 /// is the number of voxel centroids made from the kept points.
 struct PreprocessStats {
   size_t input = 0, non_finite = 0, out_of_range = 0, output = 0;
+  double voxel_size_m = 0.0;  // [m] the voxel edge used (larger than configured under a budget)
 };
 
 /// Removes non-finite points and points whose distance to the origin is outside

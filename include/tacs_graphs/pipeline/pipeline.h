@@ -14,6 +14,7 @@
 #include "tacs_graphs/backend/map_export.h"
 #include "tacs_graphs/common/timing.h"
 #include "tacs_graphs/loop_closure/loop_detector.h"
+#include "tacs_graphs/odometry/external_odometry.h"
 #include "tacs_graphs/odometry/lidar_odometry.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
 #include "tacs_graphs/rooms/room_segmenter.h"
@@ -32,16 +33,20 @@ struct ScanOutcome {
   size_t rooms = 0;        // room observations emitted at the keyframe
   size_t loops = 0;        // loop closures accepted at the keyframe
   bool optimized = false;  // the backend optimised after this scan
+  bool recovered = false;  // the odometry re-aligned the scan from its yaw hypotheses
 };
 
 /// Counters of a run (timing.json).
 struct PipelineStats {
   size_t scans = 0;
   size_t rejected_scans = 0;
+  size_t deskewed_scans = 0;      // scans motion-compensated from their point times
+  size_t odometry_recoveries = 0;  // registrations re-done from yaw hypotheses
   size_t keyframes = 0;
   size_t wall_observations = 0;
   size_t room_observations = 0;
   size_t room_redetections = 0;  // observations merged into a known room (CoSG-LCD triggers)
+  size_t scans_outside_poses = 0;  // given poses: scans outside their time span (not used)
   std::string first_rejection;   // the reason of the first rejected scan, for the log
 };
 
@@ -53,7 +58,15 @@ class Pipeline {
 
   /// Processes one scan given in the base frame (the caller applies the sensor extrinsic). Never
   /// throws on bad data: the scan is rejected with a reason and the state is kept.
-  ScanOutcome processScan(double stamp, const PointCloud& scan_in_base);
+  /// `point_offsets_s`: optional per-point times relative to `stamp` (LidarOdometry::process).
+  ScanOutcome processScan(double stamp, const PointCloud& scan_in_base,
+                          const std::vector<float>* point_offsets_s = nullptr);
+
+  /// Takes the odometry from given poses (T_odom_base by stamp, e.g. a trajectory file of another
+  /// odometry or the reference) instead of GICP: each scan gets the pose interpolated at its
+  /// stamp, and scans outside the poses' time span are skipped and counted. Call before the
+  /// first scan. The keyframe information is that of a 2 cm / 0.5 deg motion.
+  void useGivenPoses(const Trajectory& poses);
 
   /// Emits the room still being accumulated, then a final optimisation.
   void finish();
@@ -85,6 +98,7 @@ class Pipeline {
 
   PipelineConfig config_;
   LidarOdometry odometry_estimator_;
+  std::unique_ptr<ExternalOdometry> given_poses_;  // set: odometry from given poses
   WallExtractor wall_extractor_;
   Eigen::Vector3d sensor_in_base_;  // wall extraction's viewpoint
   TraversabilityMapper traversability_mapper_;

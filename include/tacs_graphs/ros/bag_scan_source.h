@@ -21,12 +21,15 @@ class BagScanSource {
     std::string frame_id;
     PointCloud cloud;                  // sensor frame
     CloudConversionResult conversion;  // conversion.ok == false: the message was unusable
+    PointTimes times;                  // per-point times relative to `stamp`, when usable
   };
 
   /// Opens `path` and selects the PointCloud2 `topic`. Throws std::runtime_error with a message a
   /// user can act on: the file is missing or not a bag, the topic is absent (the message lists the
   /// PointCloud2 topics present) or has another type.
-  BagScanSource(const std::string& path, const std::string& topic);
+  /// `point_times` says where each scan's per-point time is read from.
+  BagScanSource(const std::string& path, const std::string& topic,
+                const PointTimeConfig& point_times = PointTimeConfig());
 
   /// Next scan in bag order; false at the end of the bag.
   bool next(Scan* scan);
@@ -48,6 +51,7 @@ class BagScanSource {
   std::unique_ptr<rosbag::View> view_;
   rosbag::View::iterator it_;
   size_t message_count_ = 0;
+  PointTimeConfig point_times_;
 };
 
 }  // namespace tacs

@@ -29,7 +29,7 @@
 
 #include "tacs_graphs/odometry/lidar_odometry.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
-#include "tacs_graphs/ros/external_odometry.h"
+#include "tacs_graphs/odometry/external_odometry.h"
 #include "tacs_graphs/ros/scan_gap_monitor.h"
 #include "tacs_graphs/ros/warn_once.h"
 

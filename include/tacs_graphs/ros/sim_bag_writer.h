@@ -14,8 +14,10 @@
 namespace tacs {
 
 /// The cloud of one sweep: 22-byte points (float32 x y z intensity, uint16 ring, float32 time).
-sensor_msgs::PointCloud2 simScanToPointCloud2(const sim::SimScan& scan,
-                                              const std::string& frame_id);
+/// x y z intensity ring and the per-point time as the driver of `time_field` writes it:
+/// "time" float32 s (Velodyne) or "t" uint32 ns (Ouster), since the sweep start.
+sensor_msgs::PointCloud2 simScanToPointCloud2(const sim::SimScan& scan, const std::string& frame_id,
+                                              const std::string& time_field = "time");
 
 class SimBagWriter {
  public:
@@ -25,6 +27,7 @@ class SimBagWriter {
     std::string sensor_frame = "velodyne";
     std::string base_frame = "base_link";
     std::string world_frame = "world";
+    std::string time_field = "time";  // SensorSpec::time_field
   };
 
   /// Opens (truncates) `path`. Throws rosbag::BagException on failure.

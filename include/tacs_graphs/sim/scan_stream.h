@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "tacs_graphs/common/types.h"
@@ -66,5 +67,9 @@ class ScanStream {
 
 /// XYZI cloud in the sensor frame (for the core pipeline), stamped in microseconds as PCL does.
 PointCloud toPointCloud(const SimScan& scan);
+
+/// The points' times as a driver would write them in `field` (SensorSpec::time_field): "time"
+/// float32 seconds, "t" whole nanoseconds, both since the sweep start (the scan's stamp).
+std::vector<double> rawPointTimes(const SimScan& scan, const std::string& field);
 
 }  // namespace tacs::sim

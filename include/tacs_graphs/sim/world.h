@@ -77,6 +77,9 @@ struct SensorSpec {
   double dropout_prob = 0.005;     // share of returns lost at random
   double intensity_noise = 2.0;    // std of additive intensity noise [intensity units]
   bool motion_distortion = false;  // cast each firing from the pose at its own time
+  // Per-point time convention of the clouds: "time" (Velodyne: float32 s since the sweep
+  // start) or "t" (Ouster: uint32 ns since the sweep start). Presets: vlp16 time, os* t.
+  std::string time_field = "time";
   uint64_t seed = 1;
 };
 

@@ -20,4 +20,11 @@ Pose3 FramesConfig::baseToSensor() const {
   return poseFromXyzRpy(e[0], e[1], e[2], e[3], e[4], e[5]);
 }
 
+Trajectory rebaseTrajectory(const Trajectory& sensor_poses, const Pose3& T_base_sensor) {
+  Trajectory out = sensor_poses;
+  const Pose3 T_sensor_base = T_base_sensor.inverse();
+  for (StampedPose& p : out) p.pose = p.pose * T_sensor_base;
+  return out;
+}
+
 }  // namespace tacs

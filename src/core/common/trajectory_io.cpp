@@ -26,7 +26,7 @@ void writeTum(const std::string& path, const Trajectory& trajectory) {
   }
 }
 
-Trajectory readTum(const std::string& path) {
+Trajectory readTum(const std::string& path, bool require_increasing) {
   std::ifstream in(path);
   if (!in) throw TrajectoryIoError(path + ": cannot open file");
   Trajectory out;
@@ -53,6 +53,13 @@ Trajectory readTum(const std::string& path) {
                               ": quaternion has zero norm");
     }
     if (!out.empty() && v[0] == out.back().stamp) continue;  // duplicate stamp: keep the first
+    if (require_increasing && !out.empty() && v[0] < out.back().stamp) {
+      char stamps[96];
+      std::snprintf(stamps, sizeof(stamps), "%.6f is before the previous pose's %.6f", v[0],
+                    out.back().stamp);
+      throw TrajectoryIoError(path + ": line " + std::to_string(line_no) + ": stamp " + stamps +
+                              " (stamps must increase)");
+    }
     StampedPose sp;
     sp.stamp = v[0];
     sp.pose.linear() = q.normalized().toRotationMatrix();

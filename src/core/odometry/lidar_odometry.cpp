@@ -1,6 +1,7 @@
 #include "tacs_graphs/odometry/lidar_odometry.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -29,6 +30,19 @@ void OdometryConfig::validate() const {
                 "must be in [0, 1]");
   requireConfig(max_correction_m > 0.0, "odometry.max_correction_m", "must be > 0");
   requireConfig(max_correction_deg > 0.0, "odometry.max_correction_deg", "must be > 0");
+  requireConfig(max_adaptive_correction_m >= max_correction_m,
+                "odometry.max_adaptive_correction_m", "must be >= max_correction_m");
+  requireConfig(max_adaptive_correction_deg >= max_correction_deg,
+                "odometry.max_adaptive_correction_deg", "must be >= max_correction_deg");
+  requireConfig(fit_distance_m > 0.0, "odometry.fit_distance_m", "must be > 0");
+  requireConfig(recovery_min_fit >= 0.0 && recovery_min_fit <= 1.0, "odometry.recovery_min_fit",
+                "must be in [0, 1]");
+  requireConfig(recovery_voxel_m >= 0.0, "odometry.recovery_voxel_m", "must be >= 0");
+  requireConfig(recovery_relative_fit >= 0.0 && recovery_relative_fit <= 1.0,
+                "odometry.recovery_relative_fit", "must be in [0, 1]");
+  requireConfig(level_max_tilt_deg > 0.0 && level_max_tilt_deg < 90.0,
+                "odometry.level_max_tilt_deg", "must be in (0, 90)");
+  point_times.validate();
   requireConfig(keyframe_cloud_voxel_m >= 0.0, "odometry.keyframe_cloud_voxel_m", "must be >= 0");
 }
 
@@ -51,7 +65,8 @@ LidarOdometry::LidarOdometry(const OdometryConfig& config) : config_(config) { c
 
 Pose3 LidarOdometry::predict(double stamp, bool* reset) const {
   const double dt = stamp - last_stamp_;
-  *reset = !has_velocity_ || dt > config_.max_time_gap_s;
+  // A gap is judged against the sensor's own rate too: a 1 Hz recording is no gap at every scan.
+  *reset = !has_velocity_ || dt > std::max(config_.max_time_gap_s, 3.0 * scan_interval_s_);
   if (*reset) return last_pose_;
   Pose3 delta = Pose3::Identity();
   delta.translation() = linear_velocity_ * dt;
@@ -107,7 +122,137 @@ void LidarOdometry::rebuildLocalMap() {
                                 config_.gicp.k_neighbors, config_.gicp.num_threads);
 }
 
-OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan) {
+PointCloud LidarOdometry::compensate(const PointCloud& scan, const std::vector<float>* offsets,
+                                     const BodyVelocity& velocity, bool* deskewed) const {
+  *deskewed = config_.deskew && offsets && offsets->size() == scan.size();
+  if (!*deskewed) return scan;
+  return tacs::deskew(scan, *offsets, velocity);
+}
+
+GicpResult LidarOdometry::align(const GicpCloud::ConstPtr& scan, double gate_m, const Pose3& from,
+                                double robust_m) const {
+  GicpConfig gated = config_.gicp;
+  gated.max_correspondence_distance_m = gate_m;
+  gated.robust_plane_distance_m = robust_m;
+  Gicp gicp(gated);
+  gicp.setTarget(local_map_);
+  gicp.setSource(scan);
+  return gicp.align(from);
+}
+
+double LidarOdometry::fitOf(const GicpCloud::ConstPtr& scan, const Pose3& T) const {
+  GicpConfig gated = config_.gicp;
+  gated.max_correspondence_distance_m = config_.fit_distance_m;
+  Gicp gicp(gated);
+  gicp.setTarget(local_map_);
+  gicp.setSource(scan);
+  return gicp.evaluate(T).inlier_ratio;
+}
+
+bool LidarOdometry::withinLimits(const Pose3& guess, const Pose3& T) const {
+  // The guess's recent error widens the limits (3 sigma), between the configured floor and
+  // ceiling: a wheeled robot keeps 1 m / 30 deg, a hand-held sensor's turns get up to 90 deg.
+  const double limit_m = std::clamp(3.0 * model_error_m_, config_.max_correction_m,
+                                    config_.max_adaptive_correction_m);
+  const double limit_deg =
+      std::clamp(3.0 * model_error_rad_ * 180.0 / M_PI, config_.max_correction_deg,
+                 config_.max_adaptive_correction_deg);
+  const Pose3 correction = guess.inverse() * T;
+  return correction.translation().norm() <= limit_m && rotationAngleDeg(correction) <= limit_deg;
+}
+
+GicpResult LidarOdometry::recoverFromHypotheses(const PointCloud& cloud,
+                                                const GicpCloud::ConstPtr& scan,
+                                                const Pose3& guess) const {
+  // Coarse to fine from each yaw about the base's z axis: a sparse source under the wide gate
+  // finds the basin, the full scan under the normal gate settles in it; the hypothesis whose
+  // result fits most of the scan wins (ties: the smaller turn, listed first).
+  const GicpCloud::ConstPtr sparse = GicpCloud::build(
+      voxelDownsample(cloud, config_.recovery_voxel_m), config_.gicp.k_neighbors,
+      config_.gicp.num_threads);
+  const double wide_m =
+      std::max(config_.recovery_correspondence_distance_m, config_.gicp.max_correspondence_distance_m);
+  GicpResult best;
+  double best_fit = -1.0;
+  // About the odom frame's vertical through the guess (a hand-held sensor turns about gravity,
+  // not about its own tilted axis), from the constant-velocity guess and from standing still:
+  // at a low rate a hand-held turn often reverses, and the velocity then points the wrong way.
+  std::vector<Pose3> starts;
+  for (const Pose3& base : {guess, last_pose_}) {
+    for (double yaw_deg : config_.recovery_yaw_deg) {
+      Pose3 start = base;
+      start.linear() =
+          Eigen::AngleAxisd(yaw_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()).matrix() *
+          base.linear();
+      starts.push_back(start);
+    }
+  }
+  for (const Pose3& start : starts) {
+    const Pose3 coarse = align(sparse, wide_m, start, config_.gicp.robust_plane_distance_m)
+                             .T_target_source;
+    const double coarse_fit = fitOf(sparse, coarse);
+    if (coarse_fit <= best_fit) continue;  // the fine pass rarely gains what the coarse lacks
+    GicpResult fine = align(scan, config_.gicp.max_correspondence_distance_m, coarse,
+                            config_.gicp.robust_plane_distance_m);
+    const double fit = fitOf(scan, fine.T_target_source);
+    if (fit > best_fit) best_fit = fit, best = fine;
+  }
+  return best;
+}
+
+GicpResult LidarOdometry::registerScan(const GicpCloud::ConstPtr& scan, const PointCloud& cloud,
+                                       const Pose3& guess, bool reset,
+                                       OdometryResult* result) const {
+  const double gate_m = config_.gicp.max_correspondence_distance_m;
+  const double robust_m = config_.gicp.robust_plane_distance_m;
+  Pose3 start = guess;
+  if (reset) {  // no motion prior: a coarse pass with wide gating widens the basin
+    start = align(scan, std::max(config_.recovery_correspondence_distance_m, gate_m), guess,
+                  robust_m)
+                .T_target_source;
+  }
+  GicpResult reg = align(scan, gate_m, start, robust_m);
+  result->fit = fitOf(scan, reg.T_target_source);
+  // A rectangular room has false minima a quarter turn away that still fit half the scan: the
+  // fit is judged against the recent scans' too, not only against the absolute floor.
+  const double min_fit =
+      std::max(config_.recovery_min_fit, config_.recovery_relative_fit * recent_fit_);
+  if (result->fit < min_fit || !withinLimits(guess, reg.T_target_source)) {
+    GicpResult recovered = recoverFromHypotheses(cloud, scan, guess);
+    const double fit = fitOf(scan, recovered.T_target_source);
+    if (fit > result->fit) {
+      reg = recovered;
+      result->fit = fit;
+      result->recovered = true;
+    }
+  }
+  return reg;
+}
+
+void LidarOdometry::updateMotionModel(double stamp, const Pose3& guess, const Pose3& pose,
+                                      bool reset) {
+  const double dt = stamp - last_stamp_;
+  const Pose3 step = last_pose_.inverse() * pose;
+  linear_velocity_ = step.translation() / dt;
+  angular_velocity_ = rotationVector(step.linear()) / dt;
+  has_velocity_ = true;
+  scan_interval_s_ = scan_interval_s_ > 0.0 ? 0.9 * scan_interval_s_ + 0.1 * dt : dt;
+  if (!reset) {  // the guess's error, as a running RMS over about the last 10 scans
+    const Pose3 error = guess.inverse() * pose;
+    const double e_m = error.translation().norm(), e_rad = rotationAngleDeg(error) * M_PI / 180.0;
+    model_error_m_ = std::sqrt(0.9 * model_error_m_ * model_error_m_ + 0.1 * e_m * e_m);
+    model_error_rad_ = std::sqrt(0.9 * model_error_rad_ * model_error_rad_ + 0.1 * e_rad * e_rad);
+  }
+  last_pose_ = pose;
+  last_stamp_ = stamp;
+}
+
+void LidarOdometry::updateRecentFit(double fit) {
+  recent_fit_ = recent_fit_ > 0.0 ? 0.8 * recent_fit_ + 0.2 * fit : fit;
+}
+
+OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
+                                      const std::vector<float>* point_offsets_s) {
   Stopwatch watch;
   OdometryResult result;
   result.stamp = stamp;
@@ -122,8 +267,15 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan) {
   if (initialized_ && stamp <= last_stamp_) {
     return finish(format("stamp %.6f is not after the previous scan's %.6f", stamp, last_stamp_));
   }
-  const PointCloud::Ptr cloud(
-      new PointCloud(preprocess(scan, config_.preprocess, &result.preprocess)));
+  bool reset = !initialized_;
+  const Pose3 guess = initialized_ ? predict(stamp, &reset) : Pose3::Identity();
+  result.motion_prior_reset = reset && initialized_;
+  // Deskewed with the guessed motion; without a motion prior the scan stays as measured.
+  BodyVelocity velocity;
+  if (!reset) velocity = {linear_velocity_, angular_velocity_};
+  PointCloud compensated = compensate(scan, point_offsets_s, velocity, &result.deskewed);
+  PointCloud::Ptr cloud(
+      new PointCloud(preprocess(compensated, config_.preprocess, &result.preprocess)));
   const PreprocessStats& s = result.preprocess;
   if (cloud->size() < static_cast<size_t>(config_.min_scan_points)) {
     const std::string counts = std::to_string(s.input) + " points in, " +
@@ -133,47 +285,44 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan) {
     return finish("too few points after preprocessing (" + std::to_string(cloud->size()) + " < " +
                   std::to_string(config_.min_scan_points) + "; " + counts + ")");
   }
-  const GicpCloud::ConstPtr scan_gicp =
+  GicpCloud::ConstPtr scan_gicp =
       GicpCloud::build(*cloud, config_.gicp.k_neighbors, config_.gicp.num_threads);
 
   if (!initialized_) {  // the first scan defines the odom frame
     initialized_ = true;
     last_stamp_ = stamp;
     last_pose_ = Pose3::Identity();
+    if (config_.level_from_floor) {
+      FloorSearch search;
+      search.max_tilt_deg = config_.level_max_tilt_deg;
+      result.floor = findFloor(*cloud, search);
+      if (result.floor) last_pose_.linear() = levellingRotation(result.floor->normal);
+    }
     result.T_odom_base = last_pose_;
     addKeyframe(&result, scan_gicp, cloud);
-    attachKeyframeCloud(scan, &result);
+    attachKeyframeCloud(compensated, &result);
     return finish("");
   }
 
-  bool reset = false;
-  const Pose3 guess = predict(stamp, &reset);
-  result.motion_prior_reset = reset;
-  // Aligns the scan to the local map from `from` under the correspondence gate `gate_m` and the
-  // robust kernel `robust_m` (0: least squares).
-  const auto align = [&](double gate_m, const Pose3& from, double robust_m) {
-    GicpConfig gated = config_.gicp;
-    gated.max_correspondence_distance_m = gate_m;
-    gated.robust_plane_distance_m = robust_m;
-    Gicp gicp(gated);
-    gicp.setTarget(local_map_);
-    gicp.setSource(scan_gicp);
-    return gicp.align(from);
-  };
+  result.registration = registerScan(scan_gicp, *cloud, guess, reset, &result);
   const double gate_m = config_.gicp.max_correspondence_distance_m;
-  const double robust_m = config_.gicp.robust_plane_distance_m;
-  Pose3 start = guess;
-  if (reset) {  // no motion prior: a coarse pass with wide gating widens the basin
-    start = align(std::max(config_.recovery_correspondence_distance_m, gate_m), guess, robust_m)
-                .T_target_source;
-  }
-  result.registration = align(gate_m, start, robust_m);
   const double refine_m = config_.refine_correspondence_distance_m;
+  if (result.deskewed && config_.deskew_refine) {
+    // Deskewed once more with the motion the registration found, so the refinement below sees
+    // the scan as the registered motion would have measured it.
+    const double dt = stamp - last_stamp_;
+    const Pose3 step = last_pose_.inverse() * result.registration.T_target_source;
+    const BodyVelocity registered{step.translation() / dt, rotationVector(step.linear()) / dt};
+    compensated = compensate(scan, point_offsets_s, registered, &result.deskewed);
+    cloud.reset(new PointCloud(preprocess(compensated, config_.preprocess, &result.preprocess)));
+    scan_gicp = GicpCloud::build(*cloud, config_.gicp.k_neighbors, config_.gicp.num_threads);
+  }
   if (refine_m > 0.0 && refine_m < gate_m) {
     // The inlier test below stays on the wide gate's pairs: the narrow gate leaves out far
     // points by design.
     result.registration.T_target_source =
-        align(refine_m, result.registration.T_target_source, config_.refine_robust_plane_distance_m)
+        align(scan_gicp, refine_m, result.registration.T_target_source,
+              config_.refine_robust_plane_distance_m)
             .T_target_source;
   }
   const GicpResult& reg = result.registration;
@@ -181,27 +330,19 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan) {
     return finish(format("registration rejected: inlier ratio %.2f < %.2f", reg.inlier_ratio,
                          config_.min_inlier_ratio));
   }
-  const Pose3 correction = guess.inverse() * reg.T_target_source;
-  if (!reset && (correction.translation().norm() > config_.max_correction_m ||
-                 rotationAngleDeg(correction) > config_.max_correction_deg)) {
-    return finish(
-        format("registration rejected: it moved the constant-velocity guess by %.2f m "
-               "and %.1f deg (limits %.2f m, %.1f deg)",
-               correction.translation().norm(), rotationAngleDeg(correction),
-               config_.max_correction_m, config_.max_correction_deg));
+  if (!reset && !result.recovered && !withinLimits(guess, reg.T_target_source)) {
+    const Pose3 correction = guess.inverse() * reg.T_target_source;
+    return finish(format("registration rejected: it moved the constant-velocity guess by %.2f m "
+                         "and %.1f deg (beyond the adaptive limits, floor %.2f m, %.1f deg)",
+                         correction.translation().norm(), rotationAngleDeg(correction),
+                         config_.max_correction_m, config_.max_correction_deg));
   }
-
-  const double dt = stamp - last_stamp_;
-  const Pose3 step = last_pose_.inverse() * reg.T_target_source;
-  linear_velocity_ = step.translation() / dt;
-  angular_velocity_ = rotationVector(step.linear()) / dt;
-  has_velocity_ = true;
-  last_pose_ = reg.T_target_source;
-  last_stamp_ = stamp;
+  updateMotionModel(stamp, guess, reg.T_target_source, reset);
+  updateRecentFit(result.fit);
   result.T_odom_base = last_pose_;
   if (isKeyframe(last_pose_)) {
     addKeyframe(&result, scan_gicp, cloud);
-    attachKeyframeCloud(scan, &result);
+    attachKeyframeCloud(compensated, &result);
   }
   return finish("");
 }

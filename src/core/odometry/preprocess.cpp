@@ -18,6 +18,7 @@ void PreprocessConfig::validate() const {
                 "must be > min_range_m");
   requireConfig(voxel_size_m >= 0.0 && std::isfinite(voxel_size_m),
                 "odometry.preprocess.voxel_size_m", "must be >= 0 (0 disables downsampling)");
+  requireConfig(max_points >= 0, "odometry.preprocess.max_points", "must be >= 0 (0: no budget)");
 }
 
 namespace {
@@ -135,6 +136,15 @@ PointCloud preprocess(const PointCloud& in, const PreprocessConfig& config,
   kept.width = static_cast<uint32_t>(kept.points.size());
   kept.height = 1;
   PointCloud out = voxelDownsample(kept, config.voxel_size_m);
+  s.voxel_size_m = config.voxel_size_m;
+  // Point budget: on surfaces the count falls with the voxel edge squared, so a dense LiDAR's
+  // scan is regridded coarser (from the first grid's centroids, which is cheap) until it fits.
+  const size_t budget = static_cast<size_t>(std::max(0, config.max_points));
+  for (int pass = 0; budget > 0 && s.voxel_size_m > 0.0 && out.size() > budget && pass < 4;
+       ++pass) {
+    s.voxel_size_m *= 1.05 * std::sqrt(static_cast<double>(out.size()) / budget);
+    out = voxelDownsample(out, s.voxel_size_m);
+  }
   s.output = out.points.size();
   if (stats) *stats = s;
   return out;

@@ -1,5 +1,7 @@
 #include "tacs_graphs/pipeline/pipeline.h"
 
+#include <algorithm>
+
 #include "tacs_graphs/odometry/preprocess.h"
 
 namespace tacs {
@@ -23,11 +25,22 @@ Pipeline::Pipeline(const PipelineConfig& config, const Pose3& T_base_sensor)
       backend_(config_.backend, config_.walls.association),
       map_clouds_(config_.map_export.cloud_retention) {}
 
-ScanOutcome Pipeline::processScan(double stamp, const PointCloud& scan_in_base) {
+ScanOutcome Pipeline::processScan(double stamp, const PointCloud& scan_in_base,
+                                  const std::vector<float>* point_offsets_s) {
   ScanOutcome outcome;
   ++stats_.scans;
-  const OdometryResult odom = odometry_estimator_.process(stamp, scan_in_base);
+  if (given_poses_ && !given_poses_->poseAt(stamp)) {
+    ++stats_.scans_outside_poses;
+    outcome.error = "no given pose at the scan's stamp";
+    return outcome;
+  }
+  const OdometryResult odom =
+      given_poses_ ? given_poses_->process(stamp, scan_in_base)
+                   : odometry_estimator_.process(stamp, scan_in_base, point_offsets_s);
   stage_times_.add("odometry", odom.time_ms);
+  stats_.deskewed_scans += odom.deskewed ? 1 : 0;
+  stats_.odometry_recoveries += odom.recovered ? 1 : 0;
+  outcome.recovered = odom.recovered;
   if (!odom.ok) {
     ++stats_.rejected_scans;
     if (stats_.first_rejection.empty()) stats_.first_rejection = odom.error;
@@ -38,6 +51,16 @@ ScanOutcome Pipeline::processScan(double stamp, const PointCloud& scan_in_base) 
   odometry_.push_back({stamp, odom.T_odom_base});
   if (odom.is_keyframe) processKeyframe(odom, &outcome);
   return outcome;
+}
+
+void Pipeline::useGivenPoses(const Trajectory& poses) {
+  // A trajectory file is read whole: no buffer limit, and its own spacing (a 1 Hz reference is
+  // interpolated over) up to 2 s or the odometry's gap, whichever is longer.
+  constexpr double kSigmaXyzM = 0.02, kSigmaRotDeg = 0.5, kMaxGapS = 2.0;
+  given_poses_ = std::make_unique<ExternalOdometry>(config_.odometry, kSigmaXyzM, kSigmaRotDeg, 0,
+                                                    std::max(kMaxGapS,
+                                                             config_.odometry.max_time_gap_s));
+  for (const StampedPose& p : poses) given_poses_->addPose(p.stamp, p.pose);
 }
 
 void Pipeline::processKeyframe(const OdometryResult& odom, ScanOutcome* outcome) {

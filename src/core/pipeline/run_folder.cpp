@@ -15,6 +15,8 @@ nlohmann::json timingJson(const Pipeline& pipeline, const RunInfo& info) {
   j["source"] = info.source;
   j["scans"] = stats.scans;
   j["rejected_scans"] = stats.rejected_scans;
+  j["deskewed_scans"] = stats.deskewed_scans;
+  j["odometry_recoveries"] = stats.odometry_recoveries;
   j["keyframes"] = stats.keyframes;
   j["wall_observations"] = stats.wall_observations;
   j["wall_time_s"] = info.wall_time_s;

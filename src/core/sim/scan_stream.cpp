@@ -113,4 +113,14 @@ PointCloud toPointCloud(const SimScan& scan) {
   return cloud;
 }
 
+std::vector<double> rawPointTimes(const SimScan& scan, const std::string& field) {
+  std::vector<double> raw;
+  raw.reserve(scan.points.size());
+  for (const auto& p : scan.points) {
+    raw.push_back(field == "t" ? static_cast<double>(std::llround(double{p.time} * 1e9))
+                               : static_cast<double>(p.time));
+  }
+  return raw;
+}
+
 }  // namespace tacs::sim

@@ -189,6 +189,10 @@ void parseSensor(ObjectReader& top, SensorSpec* s) {
   r.number("intensity_noise", &s->intensity_noise);
   if (s->intensity_noise < 0) r.fail("sensor.intensity_noise", "must be >= 0");
   r.boolean("motion_distortion", &s->motion_distortion);
+  r.string("time_field", &s->time_field);
+  if (s->time_field != "time" && s->time_field != "t") {
+    r.fail("sensor.time_field", "must be time (Velodyne, float32 s) or t (Ouster, uint32 ns)");
+  }
   if (const json* seed = r.get("seed", false)) {
     if (!seed->is_number_unsigned()) r.fail("sensor.seed", "expected an integer >= 0");
     s->seed = seed->get<uint64_t>();
@@ -201,10 +205,13 @@ bool applySensorPreset(const std::string& model, SensorSpec* s) {
   // Datasheet values: VLP-16 1800 firings per turn at 10 Hz; Ouster 1024 columns per turn.
   if (model == "vlp16") {
     s->rings = 16, s->vfov_deg = 30.0, s->hres_deg = 0.2, s->max_range_m = 100.0;
+    s->time_field = "time";
   } else if (model == "os1_64") {
     s->rings = 64, s->vfov_deg = 45.0, s->hres_deg = 360.0 / 1024, s->max_range_m = 120.0;
+    s->time_field = "t";
   } else if (model == "os0_128") {
     s->rings = 128, s->vfov_deg = 90.0, s->hres_deg = 360.0 / 1024, s->max_range_m = 50.0;
+    s->time_field = "t";
   } else {
     return false;
   }

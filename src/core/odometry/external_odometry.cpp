@@ -1,5 +1,6 @@
-#include "tacs_graphs/ros/external_odometry.h"
+#include "tacs_graphs/odometry/external_odometry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -7,15 +8,13 @@
 #include "tacs_graphs/odometry/preprocess.h"
 
 namespace tacs {
-namespace {
-
-constexpr size_t kMaxBufferedPoses = 2000;  // 20 s of odometry at 100 Hz
-
-}  // namespace
 
 ExternalOdometry::ExternalOdometry(const OdometryConfig& config, double sigma_xyz_m,
-                                   double sigma_rot_deg)
-    : config_(config) {
+                                   double sigma_rot_deg, size_t max_buffered_poses,
+                                   double max_gap_s)
+    : config_(config),
+      max_buffered_poses_(max_buffered_poses),
+      max_gap_s_(max_gap_s < 0.0 ? config.max_time_gap_s : max_gap_s) {
   const double sr = sigma_rot_deg * M_PI / 180.0;
   information_.setZero();
   information_.diagonal() << Eigen::Vector3d::Constant(1.0 / (sigma_xyz_m * sigma_xyz_m)),
@@ -26,7 +25,7 @@ void ExternalOdometry::addPose(double stamp, const Pose3& T_odom_base) {
   if (!std::isfinite(stamp) || (!poses_.empty() && stamp <= poses_.back().stamp)) return;
   if (!T_odom_base.matrix().allFinite()) return;
   poses_.push_back({stamp, T_odom_base});
-  while (poses_.size() > kMaxBufferedPoses) poses_.pop_front();
+  while (max_buffered_poses_ > 0 && poses_.size() > max_buffered_poses_) poses_.pop_front();
 }
 
 double ExternalOdometry::latestStamp() const {
@@ -37,12 +36,13 @@ std::optional<Pose3> ExternalOdometry::poseAt(double stamp) const {
   if (poses_.empty() || stamp < poses_.front().stamp || stamp > poses_.back().stamp) {
     return std::nullopt;
   }
-  size_t i = 1;
-  while (i < poses_.size() && poses_[i].stamp < stamp) ++i;
-  if (i == poses_.size()) return poses_.back().pose;  // stamp == newest
-  const StampedPose& a = poses_[i - 1];
-  const StampedPose& b = poses_[i];
-  if (b.stamp - a.stamp > config_.max_time_gap_s) return std::nullopt;
+  const auto after = std::lower_bound(
+      poses_.begin(), poses_.end(), stamp,
+      [](const StampedPose& p, double t) { return p.stamp < t; });  // first pose at or after
+  if (after->stamp == stamp) return after->pose;
+  const StampedPose& a = *(after - 1);
+  const StampedPose& b = *after;
+  if (b.stamp - a.stamp > max_gap_s_) return std::nullopt;
   const double s = (stamp - a.stamp) / (b.stamp - a.stamp);
   const Eigen::Quaterniond qa(a.pose.rotation()), qb(b.pose.rotation());
   Pose3 T = Pose3::Identity();

@@ -1,4 +1,4 @@
-#include "tacs_graphs/ros/external_odometry.h"
+#include "tacs_graphs/odometry/external_odometry.h"
 
 #include <gtest/gtest.h>
 

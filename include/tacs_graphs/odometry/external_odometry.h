@@ -16,7 +16,11 @@ class ExternalOdometry {
  public:
   /// `sigma_xyz_m` and `sigma_rot_deg`: standard deviations of the motion between two keyframes
   /// that the keyframe information matrix stands for.
-  ExternalOdometry(const OdometryConfig& config, double sigma_xyz_m, double sigma_rot_deg);
+  /// `max_buffered_poses`: oldest poses are dropped beyond it (a live stream; 0: keep all, a
+  /// trajectory file). `max_gap_s`: the longest span between two poses a scan is interpolated
+  /// over (< 0: odometry.max_time_gap_s).
+  ExternalOdometry(const OdometryConfig& config, double sigma_xyz_m, double sigma_rot_deg,
+                   size_t max_buffered_poses = 2000, double max_gap_s = -1.0);
 
   /// Adds an external pose (T_odom_base). Poses must come in time order; older ones are ignored.
   void addPose(double stamp, const Pose3& T_odom_base);
@@ -24,7 +28,8 @@ class ExternalOdometry {
   double latestStamp() const;
 
   /// Pose at `stamp` interpolated between the bracketing poses (nullopt when `stamp` lies outside
-  /// the buffer or the bracketing poses are more than max_time_gap_s apart).
+  /// the buffer or the bracketing poses are more than the gap apart); a pose at exactly `stamp`
+  /// is returned as it is.
   std::optional<Pose3> poseAt(double stamp) const;
 
   /// Processes a scan (base frame) at `stamp`: same result fields as LidarOdometry::process,
@@ -33,6 +38,8 @@ class ExternalOdometry {
 
  private:
   OdometryConfig config_;
+  size_t max_buffered_poses_;
+  double max_gap_s_;
   Eigen::Matrix<double, 6, 6> information_;
   std::deque<StampedPose> poses_;
   bool has_keyframe_ = false;
