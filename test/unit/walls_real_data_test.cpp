@@ -10,10 +10,12 @@
 namespace tacs {
 namespace {
 
+using test::kRoomScansSet;
 using test::loadRoomScan;
 
 TEST(WallsRealData, RoomScanMainWallsAreFoundAndPerpendicular) {
-  const PointCloud cloud = loadRoomScan("room_scan1.pcd");
+  TACS_DATA_SET_OR_SKIP(dir, kRoomScansSet);
+  const PointCloud cloud = loadRoomScan(dir, "room_scan1.pcd");
   ASSERT_GT(cloud.size(), 100000u);
   const auto result = WallExtractor(WallExtractionConfig{}).extract(cloud);
   std::vector<WallSegment> main;
