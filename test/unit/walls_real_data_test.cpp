@@ -1,4 +1,4 @@
-// Wall extraction on a real indoor scan (PCL tutorial room, see shared data PROVENANCE.md).
+// Wall extraction on a real indoor scan (data set pcl_room_scans, see README "Test data").
 #include <gtest/gtest.h>
 
 #include <cmath>
