@@ -2,7 +2,8 @@
 // (data/hdl32_scan_pair), same preprocessed inputs, errors against relative.txt (T_target_source).
 //
 //   bench_gicp [--data DIR] [--reps N] [--threads N] [--voxel M]
-// DIR defaults to $TACS_SHARED_DATA_DIR, else ../shared/data next to the source tree.
+// DIR holds hdl32_scan_pair/; without --data the set is found as the tests find it (README "Test
+// data").
 // PCL's GICP instantiates Eigen code (Umeyama) that trips GCC 12's -Warray-bounds.
 #pragma GCC diagnostic ignored "-Warray-bounds"
 
@@ -14,7 +15,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -35,14 +35,6 @@ struct Row {
   double min_ms = 0.0;
   Pose3 result = Pose3::Identity();
 };
-
-std::string defaultDataDir() {
-  if (const char* env = std::getenv("TACS_SHARED_DATA_DIR")) return env;
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::path here = fs::canonical(__FILE__, ec);  // <repo>/bench/bench_gicp.cpp
-  return ec ? "../shared/data" : (here.parent_path().parent_path().parent_path() / "shared/data");
-}
 
 bool readMatrix4(const std::string& path, Pose3* pose) {
   std::ifstream in(path);
@@ -73,7 +65,7 @@ Row measure(const std::string& method, int reps, const std::function<Pose3()>& a
 
 int main(int argc, char** argv) {
   tacs::bench::usePassiveOpenMpWait(argv);
-  std::string data_dir = defaultDataDir();
+  std::string data_dir;
   int reps = 10;
   int threads = 2;
   tacs::PreprocessConfig pre;
@@ -94,9 +86,10 @@ int main(int argc, char** argv) {
       return arg == "--help" ? 0 : 2;
     }
   }
-  const std::string dir = data_dir + "/hdl32_scan_pair/";
+  const std::string dir = tacs::bench::dataSetDir("hdl32_scan_pair", data_dir);
   tacs::PointCloud target_raw, source_raw;
   Pose3 truth;
+  if (dir.empty()) return 1;
   if (pcl::io::loadPCDFile(dir + "251370668.pcd", target_raw) != 0 ||
       pcl::io::loadPCDFile(dir + "251371071.pcd", source_raw) != 0 ||
       !readMatrix4(dir + "relative.txt", &truth)) {

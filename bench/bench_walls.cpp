@@ -2,12 +2,12 @@
 //
 //   bench_walls [--data DIR] [--repeats N] [--draw OUT_DIR]
 //
-// Clouds: the two real PCL room scans (DIR/pcl_room_scans, default ../shared/data beside the
-// source tree) and VLP-16-like ring clouds ray-cast in synthetic rooms (16 rings over +-15 deg,
-// 0.2 deg azimuth steps, 1 cm range noise). Target: <= 20 ms per VLP-16 keyframe. With --draw,
-// each real scan is drawn top-down to OUT_DIR/<scan>_walls.png: points grey, wall segments in
-// colour with their normal, surfaces seen over (furniture, not walls) as thin black lines, the
-// sensor as a circle.
+// Clouds: the two real PCL room scans (DIR/pcl_room_scans; without --data the set is found as the
+// tests find it, README "Test data") and VLP-16-like ring clouds ray-cast in synthetic rooms (16
+// rings over +-15 deg, 0.2 deg azimuth steps, 1 cm range noise). Target: <= 20 ms per VLP-16
+// keyframe. With --draw, each real scan is drawn top-down to OUT_DIR/<scan>_walls.png: points grey,
+// wall segments in colour with their normal, surfaces seen over (furniture, not walls) as thin
+// black lines, the sensor as a circle.
 #include <pcl/io/pcd_io.h>
 
 #include <algorithm>
@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_common.h"
 #include "tacs_graphs/common/timing.h"
 #include "tacs_graphs/viz/canvas.h"
 #include "tacs_graphs/viz/scene_graph_drawing.h"
@@ -182,21 +183,14 @@ int main(int argc, char** argv) {
       return arg == "--help" || arg == "-h" ? 0 : 2;
     }
   }
-  if (data_dir.empty()) {
-    // Search upwards from the working directory for shared/data.
-    for (auto d = std::filesystem::current_path(); d.has_relative_path(); d = d.parent_path()) {
-      if (std::filesystem::is_directory(d / "shared" / "data")) {
-        data_dir = (d / "shared" / "data").string();
-        break;
-      }
-    }
-  }
+  const std::string scans_dir = tacs::bench::dataSetDir("pcl_room_scans", data_dir);
 
   std::vector<Row> rows;
   for (const std::string scan : {"room_scan1.pcd", "room_scan2.pcd"}) {
+    if (scans_dir.empty()) break;
     pcl::PointCloud<pcl::PointXYZ> xyz;
-    const std::string path = data_dir + "/pcl_room_scans/" + scan;
-    if (data_dir.empty() || pcl::io::loadPCDFile(path, xyz) != 0) {
+    const std::string path = scans_dir + scan;
+    if (pcl::io::loadPCDFile(path, xyz) != 0) {
       std::cerr << "bench_walls: cannot read " << path << " (use --data DIR)\n";
       continue;
     }

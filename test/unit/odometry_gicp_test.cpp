@@ -6,7 +6,7 @@
 #include <random>
 
 #include "common/box_room.h"
-#include "common/test_paths.h"
+#include "common/real_data.h"
 #include "tacs_graphs/odometry/gicp.h"
 #include "tacs_graphs/odometry/preprocess.h"
 
@@ -193,7 +193,7 @@ Pose3 readMatrix4(const std::string& path) {
 }
 
 TEST(Gicp, AlignsTheRealHdl32ScanPair) {
-  const std::string dir = test::sharedDataDir() + "/hdl32_scan_pair/";
+  TACS_DATA_SET_OR_SKIP(dir, "hdl32_scan_pair");
   PointCloud target_raw, source_raw;
   ASSERT_EQ(pcl::io::loadPCDFile(dir + "251370668.pcd", target_raw), 0);
   ASSERT_EQ(pcl::io::loadPCDFile(dir + "251371071.pcd", source_raw), 0);

@@ -25,7 +25,8 @@ double floorHeight(const PointCloud& cloud) {
 class TraversabilityRealData : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(TraversabilityRealData, FindsTheFloorOfTheRoom) {
-  const PointCloud cloud = test::loadRoomScan(GetParam());
+  TACS_DATA_SET_OR_SKIP(dir, test::kRoomScansSet);
+  const PointCloud cloud = test::loadRoomScan(dir, GetParam());
   ASSERT_GT(cloud.size(), 100000u);
   TraversabilityConfig config;
   config.robot_floor_z = floorHeight(cloud);  // the scans are in the sensor frame

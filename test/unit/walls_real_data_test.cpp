@@ -1,4 +1,4 @@
-// Wall extraction on a real indoor scan (PCL tutorial room, see shared data PROVENANCE.md).
+// Wall extraction on a real indoor scan (data set pcl_room_scans, see README "Test data").
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,10 +10,12 @@
 namespace tacs {
 namespace {
 
+using test::kRoomScansSet;
 using test::loadRoomScan;
 
 TEST(WallsRealData, RoomScanMainWallsAreFoundAndPerpendicular) {
-  const PointCloud cloud = loadRoomScan("room_scan1.pcd");
+  TACS_DATA_SET_OR_SKIP(dir, kRoomScansSet);
+  const PointCloud cloud = loadRoomScan(dir, "room_scan1.pcd");
   ASSERT_GT(cloud.size(), 100000u);
   const auto result = WallExtractor(WallExtractionConfig{}).extract(cloud);
   std::vector<WallSegment> main;
