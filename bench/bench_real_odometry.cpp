@@ -1,9 +1,9 @@
-// Benchmark: the odometry alone on a folder of real scans with reference poses (the BALM hall of
-// ../shared/data/balm_indoor_hall: scans.txt lists "index stamp file", poses_tum.txt the
-// reference). Prints the ATE after SE(3) alignment, the worst steps against the reference's, the
+// Benchmark: the odometry alone on a folder of real scans with reference poses (the BALM hall data
+// set, README "Test data": scans.txt lists "index stamp file", poses_tum.txt the reference). Prints the ATE after SE(3) alignment, the worst steps against the reference's, the
 // recoveries and the time per scan.
 //
 //   bench_real_odometry [--data DIR] [--config YAML] [--every N] [--steps]
+// --data DIR: the folder holding balm_indoor_hall/ (default: where the tests find it).
 #include <pcl/io/pcd_io.h>
 
 #include <algorithm>
@@ -54,15 +54,13 @@ const tacs::StampedPose& nearest(const tacs::Trajectory& ref, double stamp) {
 
 int main(int argc, char** argv) {
   tacs::bench::usePassiveOpenMpWait(argv);
-  const char* shared = std::getenv("TACS_SHARED_DATA_DIR");
-  std::string dir = std::string(shared ? shared : "../shared/data") + "/balm_indoor_hall";
-  std::string config_path;
+  std::string data_dir, config_path;
   int every = 1;
   bool steps = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--data" && i + 1 < argc) {
-      dir = argv[++i];
+      data_dir = argv[++i];
     } else if (a == "--config" && i + 1 < argc) {
       config_path = argv[++i];
     } else if (a == "--every" && i + 1 < argc) {
@@ -75,6 +73,9 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  std::string dir = tacs::bench::dataSetDir("balm_indoor_hall", data_dir);
+  if (dir.empty()) return 1;
+  if (dir.back() == '/') dir.pop_back();
   try {
     tacs::PipelineConfig config;
     if (!config_path.empty()) config = tacs::loadPipelineConfig(config_path).config;

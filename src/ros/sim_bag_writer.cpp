@@ -21,16 +21,19 @@ void fillPose(const Pose3& T, geometry_msgs::Point* p, geometry_msgs::Quaternion
 sensor_msgs::PointCloud2 simScanToPointCloud2(const sim::SimScan& scan, const std::string& frame_id,
                                               const std::string& time_field) {
   const bool ouster = time_field == "t";
+  const bool timed = !time_field.empty();
   sensor_msgs::PointCloud2 msg;
   msg.header.stamp.fromSec(scan.stamp);
   msg.header.frame_id = frame_id;
   msg.height = 1;
   msg.width = scan.points.size();
   sensor_msgs::PointCloud2Modifier modifier(msg);
+  // The count leaves the time field out when `timed` is false (the list is read up to it).
   modifier.setPointCloud2Fields(
-      6, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32, "z", 1,
-      sensor_msgs::PointField::FLOAT32, "intensity", 1, sensor_msgs::PointField::FLOAT32, "ring", 1,
-      sensor_msgs::PointField::UINT16, ouster ? "t" : "time", 1,
+      timed ? 6 : 5, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1,
+      sensor_msgs::PointField::FLOAT32, "z", 1, sensor_msgs::PointField::FLOAT32, "intensity", 1,
+      sensor_msgs::PointField::FLOAT32, "ring", 1, sensor_msgs::PointField::UINT16,
+      ouster ? "t" : "time", 1,
       ouster ? sensor_msgs::PointField::UINT32 : sensor_msgs::PointField::FLOAT32);
   modifier.resize(scan.points.size());
   msg.is_dense = true;
@@ -42,10 +45,10 @@ sensor_msgs::PointCloud2 simScanToPointCloud2(const sim::SimScan& scan, const st
     std::memcpy(out + 8, &p.z, 4);
     std::memcpy(out + 12, &p.intensity, 4);
     std::memcpy(out + 16, &p.ring, 2);
-    if (ouster) {
+    if (timed && ouster) {
       const uint32_t ns = static_cast<uint32_t>(std::llround(double{p.time} * 1e9));
       std::memcpy(out + 18, &ns, 4);
-    } else {
+    } else if (timed) {
       std::memcpy(out + 18, &p.time, 4);
     }
     out += msg.point_step;
@@ -88,7 +91,9 @@ void SimBagWriter::write(const sim::SimScan& scan) {
     (*header)["callerid"] = "/tacs_sim";
     bag_.write("/tf_static", stamp, tf, header);
   }
-  bag_.write(options_.cloud_topic, stamp, simScanToPointCloud2(scan, options_.sensor_frame, options_.time_field));
+  bag_.write(options_.cloud_topic, stamp, simScanToPointCloud2(scan, options_.sensor_frame,
+                                                         options_.point_times ? options_.time_field
+                                                                              : std::string()));
 
   nav_msgs::Odometry odom;
   odom.header.stamp = stamp;

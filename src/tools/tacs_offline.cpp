@@ -166,9 +166,10 @@ class WorldSource : public ScanSource {
     scan->stamp = s.stamp;
     scan->frame_id = "velodyne";
     scan->cloud = tacs::sim::toPointCloud(s);
-    // The times go through the same detection as a bag's field, in the world's convention.
+    // The times go through the same detection as a bag's field, in the world's convention. A
+    // world without motion distortion renders each sweep from one pose: nothing to deskew.
     const std::string field = stream_.sensor().time_field;
-    if (point_times_.time_field != "none") {
+    if (stream_.sensor().motion_distortion && point_times_.time_field != "none") {
       scan->times = tacs::resolvePointTimes(field, tacs::sim::rawPointTimes(s, field), s.stamp,
                                             point_times_);
     }

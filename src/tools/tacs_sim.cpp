@@ -66,6 +66,7 @@ int main(int argc, char** argv) {
     {
       tacs::SimBagWriter::Options bag_options;
       bag_options.time_field = stream.sensor().time_field;
+      bag_options.point_times = stream.sensor().motion_distortion;
       tacs::SimBagWriter writer(bag_path, stream.baseToSensor(), bag_options);
       tacs::sim::SimScan scan;
       size_t k = 0;

@@ -16,6 +16,7 @@ namespace tacs {
 /// The cloud of one sweep: 22-byte points (float32 x y z intensity, uint16 ring, float32 time).
 /// x y z intensity ring and the per-point time as the driver of `time_field` writes it:
 /// "time" float32 s (Velodyne) or "t" uint32 ns (Ouster), since the sweep start.
+/// An empty `time_field` writes x y z intensity ring only.
 sensor_msgs::PointCloud2 simScanToPointCloud2(const sim::SimScan& scan, const std::string& frame_id,
                                               const std::string& time_field = "time");
 
@@ -28,6 +29,9 @@ class SimBagWriter {
     std::string base_frame = "base_link";
     std::string world_frame = "world";
     std::string time_field = "time";  // SensorSpec::time_field
+    // Per-point times are written only for sweeps rendered with motion distortion: an
+    // undistorted sweep was rendered from one pose, and its firing times would mislead deskew.
+    bool point_times = true;
   };
 
   /// Opens (truncates) `path`. Throws rosbag::BagException on failure.
