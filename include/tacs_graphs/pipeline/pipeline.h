@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -95,6 +96,11 @@ class Pipeline {
   void applyLoops(const LoopDetection& detection, ScanOutcome* outcome);
   /// Optimised poses back into the traversable map and the loop detector.
   void propagatePoses(bool rebuild_traversable_map);
+  /// The keyframe's ground frame in the map: the base itself, or the floor frame under it
+  /// (traversability.find_floor_under_base).
+  Pose3 groundPose(uint32_t id) const;
+  /// Walls of the keyframe in its base frame, extracted from its ground-frame cloud.
+  WallExtractionResult extractWalls(uint32_t id, const PointCloud& ground_cloud);
 
   PipelineConfig config_;
   LidarOdometry odometry_estimator_;
@@ -107,6 +113,8 @@ class Pipeline {
   LoopDetector loop_detector_;
   Backend backend_;
   std::vector<uint32_t> keyframe_ids_;  // in arrival (= stamp) order
+  std::map<uint32_t, Pose3> base_to_floor_;  // find_floor_under_base: T_base_floor per keyframe
+  std::optional<double> floor_height_m_;     // ... and the last height of the base above it
   std::vector<double> keyframe_stamps_;
   bool loop_since_pose_update_ = false;
   PipelineStats stats_;

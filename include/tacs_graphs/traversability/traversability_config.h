@@ -16,6 +16,10 @@ struct TraversabilityConfig {
   double min_range = 0.3;   // points closer than this (horizontally) are the robot itself [m]
   // --- robot
   double robot_floor_z = 0.0;        // height of the floor under the robot in the base frame [m]
+  // The base is not on the floor (a hand-held sensor, a high mount with base = sensor): each
+  // keyframe is levelled by its map roll and pitch and lowered onto the floor plane found below
+  // it (traversability/floor_frame.h) before the terrain model sees it.
+  bool find_floor_under_base = false;
   double robot_height = 1.2;         // top of the obstacle band above the local ground [m]
   double obstacle_min_height = 0.1;  // bottom of the obstacle band above the local ground [m]
   // --- per-node ground plane (iterative PCA from the lowest points)
@@ -56,6 +60,7 @@ struct TraversabilityConfig {
     v("max_range", max_range);
     v("min_range", min_range);
     v("robot_floor_z", robot_floor_z);
+    v("find_floor_under_base", find_floor_under_base);
     v("robot_height", robot_height);
     v("obstacle_min_height", obstacle_min_height);
     v("min_points", min_points);

@@ -62,6 +62,9 @@ struct WallExtractionConfig {
   /// sensor's upper beams pass above it at that range is a low surface (furniture side, half wall,
   /// parapet), not a wall; a top cut by the field of view (near walls) is no evidence. 0 = off.
   double min_wall_top = 1.0;
+  // A wall starts this low above the sensor at most (m; 0 = off): higher, it hangs from the
+  // ceiling (a beam, a duct, a clerestory). For a sensor carried above the furniture.
+  double max_wall_bottom = 0.0;
   /// A top within this elevation of the scan's highest beam is cut by the field of view (deg).
   double fov_top_margin_deg = 3.0;
   /// A stretch of max_gap along a segment over whose top the scan saw this many points of a
@@ -104,6 +107,7 @@ struct WallExtractionConfig {
     v("min_wall_height", min_wall_height);
     v("min_coverage", min_coverage);
     v("min_wall_top", min_wall_top);
+    v("max_wall_bottom", max_wall_bottom);
     v("fov_top_margin_deg", fov_top_margin_deg);
     v("seen_over_min_points", seen_over_min_points);
     v("seen_over_depth", seen_over_depth);

@@ -83,6 +83,7 @@ OdometryResult ExternalOdometry::process(double stamp, const PointCloud& scan_in
         config_.keyframe_cloud_voxel_m != config_.preprocess.voxel_size_m) {
       PreprocessConfig fine = config_.preprocess;
       fine.voxel_size_m = config_.keyframe_cloud_voxel_m;
+      fine.max_points = 0;  // walls and terrain want the dense cloud: the budget is the odometry's
       result.keyframe_cloud.reset(new PointCloud(preprocess(scan_in_base, fine)));
     }
     if (has_keyframe_) result.information = information_;

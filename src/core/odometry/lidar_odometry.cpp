@@ -356,6 +356,7 @@ void LidarOdometry::attachKeyframeCloud(const PointCloud& scan, OdometryResult* 
   }
   PreprocessConfig fine = config_.preprocess;
   fine.voxel_size_m = config_.keyframe_cloud_voxel_m;
+  fine.max_points = 0;  // walls and terrain want the dense cloud: the budget is the odometry's
   result->keyframe_cloud.reset(new PointCloud(preprocess(scan, fine)));
 }
 

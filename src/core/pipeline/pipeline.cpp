@@ -1,8 +1,11 @@
 #include "tacs_graphs/pipeline/pipeline.h"
 
+#include <pcl/common/transforms.h>
+
 #include <algorithm>
 
 #include "tacs_graphs/odometry/preprocess.h"
+#include "tacs_graphs/traversability/floor_frame.h"
 
 namespace tacs {
 
@@ -79,8 +82,19 @@ void Pipeline::processKeyframe(const OdometryResult& odom, ScanOutcome* outcome)
   map_clouds_.add(id, coarse, backend_);
   const Pose3 T_map_base = backend_.keyframePose(id);
 
+  // A base off the floor (hand-held): walls and terrain are read in the levelled floor frame.
+  PointCloud in_floor;
+  if (config_.traversability.find_floor_under_base) {
+    const FloorFrame floor = floorFrameUnder(cloud, T_map_base, floor_height_m_);
+    if (floor.floor_seen) floor_height_m_ = floor.height_m;
+    base_to_floor_[id] = floor.T_base_floor;
+    pcl::transformPointCloud(cloud, in_floor, floor.T_base_floor.inverse().matrix().cast<float>());
+  }
+  const bool levelled = config_.traversability.find_floor_under_base;
+  const PointCloud& ground_cloud = levelled ? in_floor : cloud;
+
   // Walls (Sec. III-B-1), associated to the backend's landmarks.
-  const WallExtractionResult walls = wall_extractor_.extract(cloud, sensor_in_base_);
+  WallExtractionResult walls = extractWalls(id, ground_cloud);
   stage_times_.add("walls", walls.time_ms);
   backend_.addWallObservations(id, walls.walls, walls.seen_over);
   outcome->walls = walls.walls.size();
@@ -89,15 +103,15 @@ void Pipeline::processKeyframe(const OdometryResult& odom, ScanOutcome* outcome)
   // Traversable graph of the keyframe into the map (Sec. III-A, III-B-2); the voxel baseline
   // segments from the clouds instead.
   if (config_.rooms.method == "tacs") {
-    const TraversabilityResult trav = traversability_mapper_.process(cloud);
     Stopwatch watch;
-    traversable_map_.insert(trav.graph, T_map_base, id);
+    const TraversabilityResult trav = traversability_mapper_.process(ground_cloud);
+    traversable_map_.insert(trav.graph, groundPose(id), id);
     stage_times_.add("traversability", trav.time_ms + watch.elapsedMs());
   }
 
   loop_detector_.addKeyframe(id, odom.stamp, T_map_base, *coarse);
-  const RoomSegmentationResult rooms =
-      room_segmenter_.processKeyframe(id, T_map_base, traversable_map_, backend_.wallMap(), &cloud);
+  const RoomSegmentationResult rooms = room_segmenter_.processKeyframe(
+      id, groundPose(id), traversable_map_, backend_.wallMap(), &cloud);
   stage_times_.add("rooms", rooms.time_ms);
   applyRooms(rooms, id, outcome);
   if (config_.loop_closure.method == "distance") {
@@ -147,10 +161,30 @@ void Pipeline::propagatePoses(bool rebuild_traversable_map) {
   loop_detector_.updatePoses(poses);
   if (rebuild_traversable_map && config_.rooms.method == "tacs") {
     Stopwatch watch;
+    for (auto& [id, pose] : poses) pose = groundPose(id);
     traversable_map_.updatePoses(poses);
     stage_times_.add("traversability", watch.elapsedMs());
   }
   if (rebuild_traversable_map) loop_since_pose_update_ = false;
+}
+
+WallExtractionResult Pipeline::extractWalls(uint32_t id, const PointCloud& ground_cloud) {
+  const auto floor = base_to_floor_.find(id);
+  if (floor == base_to_floor_.end()) return wall_extractor_.extract(ground_cloud, sensor_in_base_);
+  // Extracted level (walls are vertical there), observed in the base frame as the backend wants.
+  const Pose3& T_base_floor = floor->second;
+  WallExtractionResult r =
+      wall_extractor_.extract(ground_cloud, T_base_floor.inverse() * sensor_in_base_);
+  for (auto* list : {&r.walls, &r.seen_over, &r.horizontal}) {
+    for (WallSegment& w : *list) w = transformWall(w, T_base_floor);
+  }
+  return r;
+}
+
+Pose3 Pipeline::groundPose(uint32_t id) const {
+  const auto floor = base_to_floor_.find(id);
+  const Pose3 T_map_base = backend_.keyframePose(id);
+  return floor == base_to_floor_.end() ? T_map_base : T_map_base * floor->second;
 }
 
 void Pipeline::finish() {

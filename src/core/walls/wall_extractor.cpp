@@ -38,6 +38,7 @@ void WallExtractionConfig::validate() const {
   requireConfig(min_coverage >= 0.0 && min_coverage <= 1.0, p + "min_coverage",
                 "must be in [0, 1]");
   requireConfig(min_wall_top >= 0.0, p + "min_wall_top", "must be >= 0 (0 = off)");
+  requireConfig(max_wall_bottom >= 0.0, p + "max_wall_bottom", "must be >= 0 (0 = off)");
   requireConfig(fov_top_margin_deg >= 0.0 && fov_top_margin_deg < 90.0, p + "fov_top_margin_deg",
                 "must be in [0, 90)");
   requireConfig(seen_over_min_points >= 0, p + "seen_over_min_points", "must be >= 0 (0 = off)");
@@ -266,6 +267,9 @@ RunKind makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
   }
   if (t_max - t_min < cfg.min_wall_length || z_max - z_min < cfg.min_wall_height) {
     return RunKind::kNone;
+  }
+  if (cfg.max_wall_bottom > 0.0 && z_min - view.viewpoint.z() > cfg.max_wall_bottom) {
+    return RunKind::kNone;  // hangs from the ceiling
   }
   // Share of the length with inliers: a plane threading through scattered clutter covers little.
   const double bin = std::max(0.1, 2.0 * cfg.voxel_size);
