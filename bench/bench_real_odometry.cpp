@@ -1,6 +1,7 @@
 // Benchmark: the odometry alone on a folder of real scans with reference poses (the BALM hall data
-// set, README "Test data": scans.txt lists "index stamp file", poses_tum.txt the reference). Prints the ATE after SE(3) alignment, the worst steps against the reference's, the
-// recoveries and the time per scan.
+// set, README "Test data": scans.txt lists "index stamp file", poses_tum.txt the reference). Prints
+// the ATE after SE(3) alignment, the worst steps against the reference's, the recoveries and the
+// time per scan.
 //
 //   bench_real_odometry [--data DIR] [--config YAML] [--every N] [--steps]
 // --data DIR: the folder holding balm_indoor_hall/ (default: where the tests find it).
@@ -68,8 +69,9 @@ int main(int argc, char** argv) {
     } else if (a == "--steps") {
       steps = true;
     } else {
-      std::fprintf(stderr, "usage: bench_real_odometry [--data DIR] [--config YAML] [--every N] "
-                           "[--steps]\n");
+      std::fprintf(stderr,
+                   "usage: bench_real_odometry [--data DIR] [--config YAML] [--every N] "
+                   "[--steps]\n");
       return 2;
     }
   }
@@ -114,8 +116,9 @@ int main(int argc, char** argv) {
     std::sort(times.begin(), times.end());
     double sum = 0.0;
     for (double t : times) sum += t;
-    std::printf("| data | scans | rejected | recoveries | ATE m | max m | path m | mean ms | "
-                "median ms | max ms |\n|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf(
+        "| data | scans | rejected | recoveries | ATE m | max m | path m | mean ms | "
+        "median ms | max ms |\n|---|---|---|---|---|---|---|---|---|---|\n");
     std::printf("| %s | %zu | %zu | %zu | %.3f | %.3f | %.1f | %.1f | %.1f | %.1f |\n",
                 dir.substr(dir.find_last_of('/') + 1).c_str(), times.size(), rejected, recoveries,
                 ate.rmse, ate.max, tacs::pathLength(reference), sum / times.size(),

@@ -13,7 +13,7 @@ source "$REPO/scripts/env.sh"
 
 PACKAGES=(
   build-essential cmake python3-catkin-pkg
-  ros-core-dev python3-rostest python3-rosbag rosbash python3-std-srvs
+  ros-core-dev python3-rostest python3-rosbag python3-sensor-msgs rosbash python3-std-srvs
   libtf2-ros-dev libtf2-eigen-dev libpcl-conversions-dev
   libpcl-dev libceres-dev liboctomap-dev libnanoflann-dev nlohmann-json3-dev libyaml-cpp-dev libpng-dev
   googletest libgtest-dev

@@ -91,9 +91,9 @@ void SimBagWriter::write(const sim::SimScan& scan) {
     (*header)["callerid"] = "/tacs_sim";
     bag_.write("/tf_static", stamp, tf, header);
   }
-  bag_.write(options_.cloud_topic, stamp, simScanToPointCloud2(scan, options_.sensor_frame,
-                                                         options_.point_times ? options_.time_field
-                                                                              : std::string()));
+  bag_.write(options_.cloud_topic, stamp,
+             simScanToPointCloud2(scan, options_.sensor_frame,
+                                  options_.point_times ? options_.time_field : std::string()));
 
   nav_msgs::Odometry odom;
   odom.header.stamp = stamp;

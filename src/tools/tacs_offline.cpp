@@ -46,8 +46,8 @@ void printUsage() {
 }
 
 struct Options {
-  std::string bag, topic = "/velodyne_points", world, config, out, poses,
-      poses_frame = "base", reference;
+  std::string bag, topic = "/velodyne_points", world, config, out, poses, poses_frame = "base",
+                   reference;
   tacs::sim::SimOptions sim;
   bool quiet = false;
 };
@@ -99,7 +99,7 @@ struct SensorScan {
   double stamp = 0.0;
   std::string frame_id;
   tacs::PointCloud cloud;
-  std::string error;        // the message could not be used
+  std::string error;       // the message could not be used
   tacs::PointTimes times;  // per-point times relative to `stamp` (times.ok: usable)
 };
 
@@ -170,8 +170,8 @@ class WorldSource : public ScanSource {
     // world without motion distortion renders each sweep from one pose: nothing to deskew.
     const std::string field = stream_.sensor().time_field;
     if (stream_.sensor().motion_distortion && point_times_.time_field != "none") {
-      scan->times = tacs::resolvePointTimes(field, tacs::sim::rawPointTimes(s, field), s.stamp,
-                                            point_times_);
+      scan->times =
+          tacs::resolvePointTimes(field, tacs::sim::rawPointTimes(s, field), s.stamp, point_times_);
     }
     return true;
   }
@@ -226,8 +226,8 @@ int run(const Options& o) {
       o.reference.empty() ? tacs::Trajectory() : tacs::readTum(o.reference, true);
   std::unique_ptr<ScanSource> source;
   if (!o.bag.empty()) {
-    source = std::make_unique<BagSource>(o, loaded.config.frames,
-                                         loaded.config.odometry.point_times);
+    source =
+        std::make_unique<BagSource>(o, loaded.config.frames, loaded.config.odometry.point_times);
   } else {
     source = std::make_unique<WorldSource>(o, loaded.config.odometry.point_times);
   }
@@ -301,11 +301,11 @@ int run(const Options& o) {
   std::cout << std::fixed << std::setprecision(2) << "[tacs_offline] " << stats.scans << " scans ("
             << stats.rejected_scans << " rejected, " << stats.deskewed_scans << " deskewed, "
             << stats.odometry_recoveries << " recovered), " << stats.keyframes << " keyframes, "
-            << walls
-            << " walls (+" << graph.walls.size() - walls << " other planes), " << graph.rooms.size()
-            << " rooms, " << wall_s << " s (" << (wall_s > 0 ? stats.scans / wall_s : 0.0)
-            << " scans/s), t_FGO " << pipeline.fgoSeconds() << " s, loops " << graph.loops.size()
-            << ", t_LD " << pipeline.ldSeconds() << " s -> " << o.out << "\n";
+            << walls << " walls (+" << graph.walls.size() - walls << " other planes), "
+            << graph.rooms.size() << " rooms, " << wall_s << " s ("
+            << (wall_s > 0 ? stats.scans / wall_s : 0.0) << " scans/s), t_FGO "
+            << pipeline.fgoSeconds() << " s, loops " << graph.loops.size() << ", t_LD "
+            << pipeline.ldSeconds() << " s -> " << o.out << "\n";
   if (!reference.empty()) tacs::writeTum(o.out + "/reference_tum.txt", reference);
   printAccuracy(pipeline, reference.empty() ? source->groundTruth() : reference);
   return stats.scans > stats.rejected_scans ? 0 : 1;

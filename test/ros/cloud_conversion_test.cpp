@@ -1,12 +1,11 @@
-#include <gtest/gtest.h>
+#include "tacs_graphs/ros/cloud_conversion.h"
 
+#include <gtest/gtest.h>
 #include <sensor_msgs/point_cloud2_iterator.h>
 
 #include <limits>
 #include <string>
 #include <vector>
-
-#include "tacs_graphs/ros/cloud_conversion.h"
 
 namespace tacs {
 namespace {
@@ -144,16 +143,15 @@ TEST(CloudConversion, ReadsHesaiAbsoluteSeconds) {
   std::vector<double> times;
   for (int i = 0; i < 100; ++i) times.push_back(1000.0 + 0.001 * i);
   const TimedScan scan = fromRosCloudWithTimes(
-      timedCloud("timestamp", sensor_msgs::PointField::FLOAT64, times), 1000.0,
-      PointTimeConfig());
+      timedCloud("timestamp", sensor_msgs::PointField::FLOAT64, times), 1000.0, PointTimeConfig());
   ASSERT_TRUE(scan.times.ok) << scan.times.message;
   EXPECT_TRUE(scan.times.absolute);
   EXPECT_NEAR(scan.times.offset_s.back(), 0.099, 1e-6);
 }
 
 TEST(CloudConversion, NoTimeFieldOrDisabledGivesAReasonAndKeepsTheScan) {
-  const TimedScan plain = fromRosCloudWithTimes(toRosCloud(makeCloud(5), "s", 1.0), 1.0,
-                                                PointTimeConfig());
+  const TimedScan plain =
+      fromRosCloudWithTimes(toRosCloud(makeCloud(5), "s", 1.0), 1.0, PointTimeConfig());
   EXPECT_TRUE(plain.conversion.ok);
   EXPECT_EQ(plain.cloud.size(), 5u);
   EXPECT_FALSE(plain.times.ok);

@@ -1,6 +1,6 @@
-#include "tacs_graphs/odometry/external_odometry.h"
-
 #include <gtest/gtest.h>
+
+#include "tacs_graphs/odometry/external_odometry.h"
 
 namespace tacs {
 namespace {

@@ -13,16 +13,16 @@ namespace tacs {
 
 struct FloorPlane {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // unit, pointing up (towards the origin)
-  double height_m = 0.0;  // distance of the origin above the plane
+  double height_m = 0.0;                              // distance of the origin above the plane
   size_t inliers = 0;
 };
 
 struct FloorSearch {
-  double max_tilt_deg = 40.0;      // [deg] the floor's normal is at most this far from base z
-  double min_height_m = 0.3;       // [m] the floor is at least this far below the origin
+  double max_tilt_deg = 40.0;       // [deg] the floor's normal is at most this far from base z
+  double min_height_m = 0.3;        // [m] the floor is at least this far below the origin
   double inlier_distance_m = 0.05;  // [m] RANSAC inlier band
-  size_t min_inliers = 200;        // fewer: no floor found
-  int iterations = 200;            // RANSAC hypotheses (deterministic sampling)
+  size_t min_inliers = 200;         // fewer: no floor found
+  int iterations = 200;             // RANSAC hypotheses (deterministic sampling)
 };
 
 /// The floor seen in `cloud` (base frame), or nullopt when no plane satisfies `search`.

@@ -47,17 +47,17 @@ struct OdometryConfig {
   // (a wall behind a cabinet first seen, the far side of a thin wall); under least squares such
   // pairs shifted scans by 2-4 cm along corridors for a few scans until the next keyframe.
   double refine_robust_plane_distance_m = 0.03;
-  double min_inlier_ratio = 0.3;     // registrations with fewer inliers are rejected
+  double min_inlier_ratio = 0.3;  // registrations with fewer inliers are rejected
   // A registration that moves the constant-velocity guess by more than these limits, or that
   // matches fewer than recovery_min_fit of the scan within fit_distance_m, is retried from
   // several yaw hypotheses (recovery); the limits widen with the recent motion-model error
   // (3 sigma), up to max_adaptive_correction_m / _deg, so a hand-held sensor's fast turns are
   // followed while a wheeled robot's keep the tight default.
-  double max_correction_m = 1.0;     // [m] floor of the translation limit
-  double max_correction_deg = 30.0;  // [deg] floor of the rotation limit
+  double max_correction_m = 1.0;              // [m] floor of the translation limit
+  double max_correction_deg = 30.0;           // [deg] floor of the rotation limit
   double max_adaptive_correction_m = 3.0;     // [m] ceiling of the translation limit
   double max_adaptive_correction_deg = 90.0;  // [deg] ceiling of the rotation limit
-  double fit_distance_m = 0.3;  // [m] a scan point within this of the map counts as fitting
+  double fit_distance_m = 0.3;    // [m] a scan point within this of the map counts as fitting
   double recovery_min_fit = 0.5;  // share of fitting points below which the scan is re-aligned
   // ... or below this share of the recent scans' fit (running mean)
   double recovery_relative_fit = 0.85;

@@ -50,7 +50,7 @@ struct PointTimes {
   // warnings ("constant", "non_finite", ...), `message` says it for a user.
   std::string reason;
   std::string message;
-  std::string unit;      // the unit found or configured: s, ms, us or ns
+  std::string unit;       // the unit found or configured: s, ms, us or ns
   bool absolute = false;  // the values were absolute times
   // [s] per point, relative to the header stamp: the point was measured at stamp + offset_s[i].
   std::vector<float> offset_s;

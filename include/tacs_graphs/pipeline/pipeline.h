@@ -41,14 +41,14 @@ struct ScanOutcome {
 struct PipelineStats {
   size_t scans = 0;
   size_t rejected_scans = 0;
-  size_t deskewed_scans = 0;      // scans motion-compensated from their point times
+  size_t deskewed_scans = 0;       // scans motion-compensated from their point times
   size_t odometry_recoveries = 0;  // registrations re-done from yaw hypotheses
   size_t keyframes = 0;
   size_t wall_observations = 0;
   size_t room_observations = 0;
-  size_t room_redetections = 0;  // observations merged into a known room (CoSG-LCD triggers)
+  size_t room_redetections = 0;    // observations merged into a known room (CoSG-LCD triggers)
   size_t scans_outside_poses = 0;  // given poses: scans outside their time span (not used)
-  std::string first_rejection;   // the reason of the first rejected scan, for the log
+  std::string first_rejection;     // the reason of the first rejected scan, for the log
 };
 
 class Pipeline {
@@ -112,7 +112,7 @@ class Pipeline {
   RoomSegmenter room_segmenter_;
   LoopDetector loop_detector_;
   Backend backend_;
-  std::vector<uint32_t> keyframe_ids_;  // in arrival (= stamp) order
+  std::vector<uint32_t> keyframe_ids_;       // in arrival (= stamp) order
   std::map<uint32_t, Pose3> base_to_floor_;  // find_floor_under_base: T_base_floor per keyframe
   std::optional<double> floor_height_m_;     // ... and the last height of the base above it
   std::vector<double> keyframe_stamps_;

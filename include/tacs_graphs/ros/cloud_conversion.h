@@ -18,9 +18,9 @@ namespace tacs {
 
 struct CloudConversionResult {
   bool ok = false;
-  std::string error;      // why the message was rejected (ok == false)
-  size_t points_in = 0;   // width * height of the message
-  size_t non_finite = 0;  // points dropped for NaN/inf coordinates
+  std::string error;       // why the message was rejected (ok == false)
+  size_t points_in = 0;    // width * height of the message
+  size_t non_finite = 0;   // points dropped for NaN/inf coordinates
   std::string time_field;  // the per-point time field read (empty: none asked for or present)
 };
 

@@ -27,9 +27,9 @@
 #include <set>
 #include <string>
 
+#include "tacs_graphs/odometry/external_odometry.h"
 #include "tacs_graphs/odometry/lidar_odometry.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
-#include "tacs_graphs/odometry/external_odometry.h"
 #include "tacs_graphs/ros/scan_gap_monitor.h"
 #include "tacs_graphs/ros/warn_once.h"
 

@@ -13,8 +13,8 @@ namespace tacs {
 
 struct FloorFrame {
   Pose3 T_base_floor = Pose3::Identity();  // the floor frame in the base frame
-  double height_m = 0.0;                    // the base's height above the floor
-  bool floor_seen = false;                  // false: the last known height was used
+  double height_m = 0.0;                   // the base's height above the floor
+  bool floor_seen = false;                 // false: the last known height was used
 };
 
 /// `cloud_in_base`: the keyframe cloud; `T_map_base`: its pose in a levelled map. The floor is

@@ -15,7 +15,7 @@ struct TraversabilityConfig {
   double max_range = 16.0;  // half width of the square grid around the robot [m]
   double min_range = 0.3;   // points closer than this (horizontally) are the robot itself [m]
   // --- robot
-  double robot_floor_z = 0.0;        // height of the floor under the robot in the base frame [m]
+  double robot_floor_z = 0.0;  // height of the floor under the robot in the base frame [m]
   // The base is not on the floor (a hand-held sensor, a high mount with base = sensor): each
   // keyframe is levelled by its map roll and pitch and lowered onto the floor plane found below
   // it (traversability/floor_frame.h) before the terrain model sees it.

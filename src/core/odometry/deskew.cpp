@@ -30,8 +30,8 @@ PointCloud deskew(const PointCloud& scan, const std::vector<float>& offset_s,
     grid[c] = motionOver(velocity, t0 + c * kGridStepS).cast<float>();
   }
   for (size_t i = 0; i < out.size(); ++i) {
-    const size_t c = std::min(cells - 1, static_cast<size_t>(
-                                             std::lround((offset_s[i] - t0) / kGridStepS)));
+    const size_t c =
+        std::min(cells - 1, static_cast<size_t>(std::lround((offset_s[i] - t0) / kGridStepS)));
     auto& p = out.points[i];
     p.getVector3fMap() = grid[c] * p.getVector3fMap();
   }

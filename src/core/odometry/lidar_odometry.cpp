@@ -30,8 +30,8 @@ void OdometryConfig::validate() const {
                 "must be in [0, 1]");
   requireConfig(max_correction_m > 0.0, "odometry.max_correction_m", "must be > 0");
   requireConfig(max_correction_deg > 0.0, "odometry.max_correction_deg", "must be > 0");
-  requireConfig(max_adaptive_correction_m >= max_correction_m,
-                "odometry.max_adaptive_correction_m", "must be >= max_correction_m");
+  requireConfig(max_adaptive_correction_m >= max_correction_m, "odometry.max_adaptive_correction_m",
+                "must be >= max_correction_m");
   requireConfig(max_adaptive_correction_deg >= max_correction_deg,
                 "odometry.max_adaptive_correction_deg", "must be >= max_correction_deg");
   requireConfig(fit_distance_m > 0.0, "odometry.fit_distance_m", "must be > 0");
@@ -152,8 +152,8 @@ double LidarOdometry::fitOf(const GicpCloud::ConstPtr& scan, const Pose3& T) con
 bool LidarOdometry::withinLimits(const Pose3& guess, const Pose3& T) const {
   // The guess's recent error widens the limits (3 sigma), between the configured floor and
   // ceiling: a wheeled robot keeps 1 m / 30 deg, a hand-held sensor's turns get up to 90 deg.
-  const double limit_m = std::clamp(3.0 * model_error_m_, config_.max_correction_m,
-                                    config_.max_adaptive_correction_m);
+  const double limit_m =
+      std::clamp(3.0 * model_error_m_, config_.max_correction_m, config_.max_adaptive_correction_m);
   const double limit_deg =
       std::clamp(3.0 * model_error_rad_ * 180.0 / M_PI, config_.max_correction_deg,
                  config_.max_adaptive_correction_deg);
@@ -167,11 +167,11 @@ GicpResult LidarOdometry::recoverFromHypotheses(const PointCloud& cloud,
   // Coarse to fine from each yaw about the base's z axis: a sparse source under the wide gate
   // finds the basin, the full scan under the normal gate settles in it; the hypothesis whose
   // result fits most of the scan wins (ties: the smaller turn, listed first).
-  const GicpCloud::ConstPtr sparse = GicpCloud::build(
-      voxelDownsample(cloud, config_.recovery_voxel_m), config_.gicp.k_neighbors,
-      config_.gicp.num_threads);
-  const double wide_m =
-      std::max(config_.recovery_correspondence_distance_m, config_.gicp.max_correspondence_distance_m);
+  const GicpCloud::ConstPtr sparse =
+      GicpCloud::build(voxelDownsample(cloud, config_.recovery_voxel_m), config_.gicp.k_neighbors,
+                       config_.gicp.num_threads);
+  const double wide_m = std::max(config_.recovery_correspondence_distance_m,
+                                 config_.gicp.max_correspondence_distance_m);
   GicpResult best;
   double best_fit = -1.0;
   // About the odom frame's vertical through the guess (a hand-held sensor turns about gravity,
@@ -188,8 +188,8 @@ GicpResult LidarOdometry::recoverFromHypotheses(const PointCloud& cloud,
     }
   }
   for (const Pose3& start : starts) {
-    const Pose3 coarse = align(sparse, wide_m, start, config_.gicp.robust_plane_distance_m)
-                             .T_target_source;
+    const Pose3 coarse =
+        align(sparse, wide_m, start, config_.gicp.robust_plane_distance_m).T_target_source;
     const double coarse_fit = fitOf(sparse, coarse);
     if (coarse_fit <= best_fit) continue;  // the fine pass rarely gains what the coarse lacks
     GicpResult fine = align(scan, config_.gicp.max_correspondence_distance_m, coarse,
@@ -207,9 +207,9 @@ GicpResult LidarOdometry::registerScan(const GicpCloud::ConstPtr& scan, const Po
   const double robust_m = config_.gicp.robust_plane_distance_m;
   Pose3 start = guess;
   if (reset) {  // no motion prior: a coarse pass with wide gating widens the basin
-    start = align(scan, std::max(config_.recovery_correspondence_distance_m, gate_m), guess,
-                  robust_m)
-                .T_target_source;
+    start =
+        align(scan, std::max(config_.recovery_correspondence_distance_m, gate_m), guess, robust_m)
+            .T_target_source;
   }
   GicpResult reg = align(scan, gate_m, start, robust_m);
   result->fit = fitOf(scan, reg.T_target_source);
@@ -332,10 +332,11 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
   }
   if (!reset && !result.recovered && !withinLimits(guess, reg.T_target_source)) {
     const Pose3 correction = guess.inverse() * reg.T_target_source;
-    return finish(format("registration rejected: it moved the constant-velocity guess by %.2f m "
-                         "and %.1f deg (beyond the adaptive limits, floor %.2f m, %.1f deg)",
-                         correction.translation().norm(), rotationAngleDeg(correction),
-                         config_.max_correction_m, config_.max_correction_deg));
+    return finish(
+        format("registration rejected: it moved the constant-velocity guess by %.2f m "
+               "and %.1f deg (beyond the adaptive limits, floor %.2f m, %.1f deg)",
+               correction.translation().norm(), rotationAngleDeg(correction),
+               config_.max_correction_m, config_.max_correction_deg));
   }
   updateMotionModel(stamp, guess, reg.T_target_source, reset);
   updateRecentFit(result.fit);

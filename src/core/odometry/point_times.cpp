@@ -78,15 +78,16 @@ bool runsBackwards(const std::vector<double>& raw, const Range& r) {
 }  // namespace
 
 void PointTimeConfig::validate() const {
-  requireConfig(!time_field.empty(), "odometry.point_times.time_field", "must be auto, none or a field name");
+  requireConfig(!time_field.empty(), "odometry.point_times.time_field",
+                "must be auto, none or a field name");
   requireConfig(time_unit == "auto" || findUnit(time_unit), "odometry.point_times.time_unit",
                 "must be one of auto, s, ms, us, ns (got '" + time_unit + "')");
-  static const std::array<const char*, 5> kOrigins = {"auto", "header", "first_point",
-                                                      "last_point", "absolute"};
-  requireConfig(std::find(kOrigins.begin(), kOrigins.end(), time_origin) != kOrigins.end(),
-                "odometry.point_times.time_origin",
-                "must be one of auto, header, first_point, last_point, absolute (got '" +
-                    time_origin + "')");
+  static const std::array<const char*, 5> kOrigins = {"auto", "header", "first_point", "last_point",
+                                                      "absolute"};
+  requireConfig(
+      std::find(kOrigins.begin(), kOrigins.end(), time_origin) != kOrigins.end(),
+      "odometry.point_times.time_origin",
+      "must be one of auto, header, first_point, last_point, absolute (got '" + time_origin + "')");
   requireConfig(scan_period_s > 0.0, "odometry.point_times.scan_period_s", "must be > 0");
 }
 
@@ -126,13 +127,13 @@ PointTimes resolvePointTimes(const std::string& field, const std::vector<double>
       }
     }
     if (origin == "auto") {
-      return fail("unit", quoted + " spans " + formatDouble("%g", r.span()) +
-                              " (values " + formatDouble("%g", r.min) + " to " +
-                              formatDouble("%g", r.max) +
-                              "): in no unit (s, ms, us, ns) one sweep of about " +
-                              formatDouble("%g", period) +
-                              " s near zero or near the header stamp; set odometry.point_times.time_unit "
-                              "and time_origin");
+      return fail("unit",
+                  quoted + " spans " + formatDouble("%g", r.span()) + " (values " +
+                      formatDouble("%g", r.min) + " to " + formatDouble("%g", r.max) +
+                      "): in no unit (s, ms, us, ns) one sweep of about " +
+                      formatDouble("%g", period) +
+                      " s near zero or near the header stamp; set odometry.point_times.time_unit "
+                      "and time_origin");
     }
   } else if (!unit) {  // origin given, unit from the span
     for (const Unit& u : kUnits) {
@@ -161,10 +162,10 @@ PointTimes resolvePointTimes(const std::string& field, const std::vector<double>
   }
   const double first = r.min * unit->seconds - shift, last = r.max * unit->seconds - shift;
   if (std::max(std::abs(first), std::abs(last)) > kMaxSpanPeriods * period) {
-    return fail("offset", quoted + " puts points " +
-                              formatDouble("%.3f", std::abs(first) > std::abs(last) ? first : last) +
-                              " s from the header stamp (" + unit->name + ", origin " + origin +
-                              ")");
+    return fail("offset",
+                quoted + " puts points " +
+                    formatDouble("%.3f", std::abs(first) > std::abs(last) ? first : last) +
+                    " s from the header stamp (" + unit->name + ", origin " + origin + ")");
   }
   out.offset_s.resize(raw.size());
   for (size_t i = 0; i < raw.size(); ++i) {
