@@ -61,6 +61,36 @@ TEST(Pipeline, OdometryAndWallsOnlyWhenRoomsAndLoopsAreOff) {
   EXPECT_LT(computeAte(run.pipeline.keyframeTrajectory(), run.ground_truth).rmse, 0.10);
 }
 
+TEST(Pipeline, GivenPosesReplaceTheOdometryAndScansOutsideThemAreCounted) {
+  sim::SimOptions options;
+  options.duration_s = 4.0;
+  sim::ScanStream stream(sim::loadWorld(test::sourceDir() + "/worlds/smoke.json"), options);
+  // Given poses cover only the middle of the run: the first and last scans have none.
+  Trajectory given;
+  for (const StampedPose& p : stream.groundTruth()) {
+    if (p.stamp > 1001.0 && p.stamp < 1003.0) given.push_back(p);
+  }
+  ASSERT_GT(given.size(), 10u);
+  Pipeline pipeline{PipelineConfig{}};
+  pipeline.useGivenPoses(given);
+  const Eigen::Affine3f T_base_sensor = stream.baseToSensor().cast<float>();
+  sim::SimScan scan;
+  size_t scans = 0;
+  while (stream.next(&scan)) {
+    PointCloud in_base;
+    pcl::transformPointCloud(sim::toPointCloud(scan), in_base, T_base_sensor);
+    pipeline.processScan(scan.stamp, in_base);
+    ++scans;
+  }
+  const PipelineStats& stats = pipeline.stats();
+  EXPECT_EQ(stats.scans, scans);
+  EXPECT_EQ(stats.scans_outside_poses, scans - given.size());
+  ASSERT_EQ(pipeline.odometryTrajectory().size(), given.size());
+  for (size_t i = 0; i < given.size(); ++i) {
+    EXPECT_TRUE(pipeline.odometryTrajectory()[i].pose.isApprox(given[i].pose, 1e-9));
+  }
+}
+
 TEST(Pipeline, RejectsBadScansAndKeepsGoing) {
   Pipeline pipeline{PipelineConfig{}};
   PointCloud empty;

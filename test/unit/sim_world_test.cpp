@@ -217,5 +217,20 @@ TEST(TrajectoryIo, TumRoundTripDuplicatesAndErrors) {
   }
 }
 
+TEST(TrajectoryIo, PosesToInterpolateInMustBeSorted) {
+  // tacs_offline --poses reads its trajectory this way: an unsorted file names the line.
+  const std::string path = ::testing::TempDir() + "/unsorted.tum";
+  std::ofstream(path) << "1 0 0 0 0 0 0 1\n# c\n3 0 0 0 0 0 0 1\n2 0 0 0 0 0 0 1\n";
+  EXPECT_EQ(readTum(path).size(), 3u);  // a plain read keeps the order it finds
+  try {
+    readTum(path, /*require_increasing=*/true);
+    FAIL();
+  } catch (const TrajectoryIoError& e) {
+    EXPECT_EQ(std::string(e.what()).find(path + ": line 4: stamp 2.000000 is before"), 0u)
+        << e.what();
+  }
+  EXPECT_THROW(readTum(::testing::TempDir() + "/missing.tum", true), TrajectoryIoError);
+}
+
 }  // namespace
 }  // namespace tacs::sim
