@@ -74,9 +74,9 @@ TEST(RealHall, OnTheReferencePosesTheHallIsOneRoomBoundedByItsWalls) {
   const SceneGraph graph = pipeline.sceneGraph();
   ASSERT_EQ(graph.rooms.size(), 1u);
   // The walls the hall shows (west, north, the stepped north-east corner, the east bays) and no
-  // beam under the ceiling; some faces still come in pieces.
+  // beam or ceiling step; the bays and the opening still split the east wall into pieces.
   EXPECT_GE(graph.wallCount(), 4u);
-  EXPECT_LE(graph.wallCount(), 16u);
+  EXPECT_LE(graph.wallCount(), 14u);
   // Share of the walked path (the reference positions) on the room's free space.
   const RoomNode& room = graph.rooms.begin()->second;
   size_t covered = 0;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <random>
 #include <utility>
@@ -239,6 +240,20 @@ void faceViewpoint(const Eigen::Vector3d& viewpoint, bool horizontal_only_z, Pla
 // a wall, or a surface the sensor saw over (its top stays low while beams pass above it).
 enum class RunKind { kNone, kWall, kLowSurface };
 
+// The lowest inlier joined to the run's top without a vertical gap of more than a metre. A face
+// hanging from the ceiling (a beam, the step between two ceiling heights) whose plane also takes
+// in the floor points along its line keeps its true bottom, not the floor's.
+double connectedBottom(const Points& pts, const std::vector<uint32_t>& run) {
+  constexpr float kMaxVerticalGap = 1.0f;  // [m]
+  std::vector<float> z;
+  z.reserve(run.size());
+  for (uint32_t i : run) z.push_back(pts[i].z());
+  std::sort(z.begin(), z.end(), std::greater<float>());
+  size_t k = 1;
+  while (k < z.size() && z[k - 1] - z[k] <= kMaxVerticalGap) ++k;
+  return z[k - 1];
+}
+
 // The bounded segment of a run of inliers and what it is.
 RunKind makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
                         const WallExtractionConfig& cfg, const View& view, WallSegment* wall) {
@@ -268,7 +283,8 @@ RunKind makeWallSegment(const Points& pts, const std::vector<uint32_t>& run,
   if (t_max - t_min < cfg.min_wall_length || z_max - z_min < cfg.min_wall_height) {
     return RunKind::kNone;
   }
-  if (cfg.max_wall_bottom > 0.0 && z_min - view.viewpoint.z() > cfg.max_wall_bottom) {
+  if (cfg.max_wall_bottom > 0.0 &&
+      connectedBottom(pts, run) - view.viewpoint.z() > cfg.max_wall_bottom) {
     return RunKind::kNone;  // hangs from the ceiling
   }
   // Share of the length with inliers: a plane threading through scattered clutter covers little.
