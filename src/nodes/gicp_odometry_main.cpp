@@ -1,6 +1,8 @@
 // gicp_odometry: LiDAR odometry node (see include/tacs_graphs/ros/gicp_odometry_node.h).
 #include <ros/ros.h>
 
+#include <exception>
+
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/ros/gicp_odometry_node.h"
 #include "tacs_graphs/ros/node_runner.h"
@@ -19,6 +21,9 @@ int main(int argc, char** argv) {
                                       << " missing between received scans (full queue or gaps)");
   } catch (const tacs::ConfigError& e) {
     ROS_FATAL_STREAM("gicp_odometry: bad configuration: " << e.what());
+    return 1;
+  } catch (const std::exception& e) {  // e.g. an unreadable ~poses_file
+    ROS_FATAL_STREAM("gicp_odometry: " << e.what());
     return 1;
   }
   return 0;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tacs_graphs/common/trajectory_io.h"
 #include "tacs_graphs/ros/cloud_conversion.h"
 #include "tacs_graphs/ros/graph_messages.h"
 #include "tacs_graphs/ros/message_conversion.h"
@@ -33,7 +34,22 @@ GicpOdometryNode::GicpOdometryNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
 
   odom_pub_ = nh.advertise<nav_msgs::Odometry>("/tacs/odom", 10);
   keyframe_pub_ = nh.advertise<tacs_graphs::Keyframe>("/tacs/keyframe", 100);
-  if (external_topic.empty()) {
+  const std::string poses_file = pnh.param<std::string>("poses_file", "");
+  if (!poses_file.empty()) {
+    // A trajectory file (as tacs_offline --poses): read whole, a bad file stops the node here.
+    const Trajectory poses = readTum(poses_file, /*require_increasing=*/true);
+    if (poses.size() < 2) throw std::runtime_error(poses_file + ": fewer than 2 poses");
+    constexpr double kMaxGapS = 2.0;  // a 1 Hz reference is interpolated over
+    external_ = std::make_unique<ExternalOdometry>(
+        config_.odometry, pnh.param("external_odom_sigma_xyz_m", 0.02),
+        pnh.param("external_odom_sigma_rot_deg", 0.5), 0,
+        std::max(kMaxGapS, config_.odometry.max_time_gap_s));
+    for (const StampedPose& p : poses) external_->addPose(p.stamp, p.pose);
+    ROS_INFO_STREAM("Odometry from " << poses_file << " (" << poses.size() << " poses, "
+                                     << std::fixed << poses.front().stamp << " to "
+                                     << poses.back().stamp << ") with clouds on "
+                                     << nh.resolveName(points_topic));
+  } else if (external_topic.empty()) {
     gicp_ = std::make_unique<LidarOdometry>(config_.odometry);
     ROS_INFO_STREAM("GICP odometry on " << nh.resolveName(points_topic));
   } else {
