@@ -39,12 +39,9 @@ GicpOdometryNode::GicpOdometryNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
     // A trajectory file (as tacs_offline --poses): read whole, a bad file stops the node here.
     const Trajectory poses = readTum(poses_file, /*require_increasing=*/true);
     if (poses.size() < 2) throw std::runtime_error(poses_file + ": fewer than 2 poses");
-    constexpr double kMaxGapS = 2.0;  // a 1 Hz reference is interpolated over
-    external_ = std::make_unique<ExternalOdometry>(
-        config_.odometry, pnh.param("external_odom_sigma_xyz_m", 0.02),
-        pnh.param("external_odom_sigma_rot_deg", 0.5), 0,
-        std::max(kMaxGapS, config_.odometry.max_time_gap_s));
-    for (const StampedPose& p : poses) external_->addPose(p.stamp, p.pose);
+    external_ = ExternalOdometry::fromTrajectory(config_.odometry, poses,
+                                                 pnh.param("external_odom_sigma_xyz_m", 0.02),
+                                                 pnh.param("external_odom_sigma_rot_deg", 0.5));
     ROS_INFO_STREAM("Odometry from " << poses_file << " (" << poses.size() << " poses, "
                                      << std::fixed << poses.front().stamp << " to "
                                      << poses.back().stamp << ") with clouds on "

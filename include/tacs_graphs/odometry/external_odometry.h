@@ -4,6 +4,7 @@
 #pragma once
 
 #include <deque>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -21,6 +22,12 @@ class ExternalOdometry {
   /// over (< 0: odometry.max_time_gap_s).
   ExternalOdometry(const OdometryConfig& config, double sigma_xyz_m, double sigma_rot_deg,
                    size_t max_buffered_poses = 2000, double max_gap_s = -1.0);
+
+  /// Odometry from a whole trajectory (a file of another odometry or a reference): no buffer
+  /// limit, interpolated over gaps of up to 2 s (a 1 Hz reference) or max_time_gap_s.
+  static std::unique_ptr<ExternalOdometry> fromTrajectory(const OdometryConfig& config,
+                                                          const Trajectory& poses,
+                                                          double sigma_xyz_m, double sigma_rot_deg);
 
   /// Adds an external pose (T_odom_base). Poses must come in time order; older ones are ignored.
   void addPose(double stamp, const Pose3& T_odom_base);

@@ -21,6 +21,17 @@ ExternalOdometry::ExternalOdometry(const OdometryConfig& config, double sigma_xy
       Eigen::Vector3d::Constant(1.0 / (sr * sr));
 }
 
+std::unique_ptr<ExternalOdometry> ExternalOdometry::fromTrajectory(const OdometryConfig& config,
+                                                                   const Trajectory& poses,
+                                                                   double sigma_xyz_m,
+                                                                   double sigma_rot_deg) {
+  constexpr double kMaxGapS = 2.0;
+  auto odometry = std::make_unique<ExternalOdometry>(config, sigma_xyz_m, sigma_rot_deg, 0,
+                                                     std::max(kMaxGapS, config.max_time_gap_s));
+  for (const StampedPose& p : poses) odometry->addPose(p.stamp, p.pose);
+  return odometry;
+}
+
 void ExternalOdometry::addPose(double stamp, const Pose3& T_odom_base) {
   if (!std::isfinite(stamp) || (!poses_.empty() && stamp <= poses_.back().stamp)) return;
   if (!T_odom_base.matrix().allFinite()) return;

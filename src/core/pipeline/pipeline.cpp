@@ -57,13 +57,9 @@ ScanOutcome Pipeline::processScan(double stamp, const PointCloud& scan_in_base,
 }
 
 void Pipeline::useGivenPoses(const Trajectory& poses) {
-  // A trajectory file is read whole: no buffer limit, and its own spacing (a 1 Hz reference is
-  // interpolated over) up to 2 s or the odometry's gap, whichever is longer.
-  constexpr double kSigmaXyzM = 0.02, kSigmaRotDeg = 0.5, kMaxGapS = 2.0;
+  constexpr double kSigmaXyzM = 0.02, kSigmaRotDeg = 0.5;
   given_poses_ =
-      std::make_unique<ExternalOdometry>(config_.odometry, kSigmaXyzM, kSigmaRotDeg, 0,
-                                         std::max(kMaxGapS, config_.odometry.max_time_gap_s));
-  for (const StampedPose& p : poses) given_poses_->addPose(p.stamp, p.pose);
+      ExternalOdometry::fromTrajectory(config_.odometry, poses, kSigmaXyzM, kSigmaRotDeg);
 }
 
 void Pipeline::processKeyframe(const OdometryResult& odom, ScanOutcome* outcome) {
