@@ -19,10 +19,19 @@ BagScanSource::BagScanSource(const std::string& path, const std::string& topic,
                              const PointTimeConfig& point_times)
     : point_times_(point_times) {
   if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no such file");
+  if (std::filesystem::is_directory(path)) {
+    throw std::runtime_error(path + ": is a directory, not a bag file (give the .bag inside it)");
+  }
   try {
     bag_.open(path, rosbag::bagmode::Read);
   } catch (const rosbag::BagException& e) {
-    throw std::runtime_error(path + ": not a readable rosbag (" + e.what() + ")");
+    // A recording cut short (a crash, a full disk) lacks the index at its end.
+    const std::string why = e.what();
+    const bool truncated = why.find("wanted") != std::string::npos;
+    throw std::runtime_error(
+        path + ": not a readable rosbag (" + why + ")" +
+        (truncated ? "; it looks cut short: 'rosbag reindex " + path + "' rebuilds its index"
+                   : std::string()));
   }
   std::string found_type;
   for (const auto* c : rosbag::View(bag_).getConnections()) {

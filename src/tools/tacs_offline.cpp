@@ -289,6 +289,13 @@ int run(const Options& o) {
     std::cerr << "\n[tacs_offline] " << counts.scans_outside_poses << " of " << counts.scans
               << " scans lie outside the time span of " << o.poses << " and were skipped\n";
   }
+  if (counts.keyframes == 0) {  // nothing to map: no output that looks like a run
+    throw std::runtime_error("no usable scan among " + std::to_string(counts.scans) +
+                             (counts.first_rejection.empty()
+                                  ? std::string(" (the source held none)")
+                                  : " (first reason: " + counts.first_rejection + ")") +
+                             "; nothing written to " + o.out);
+  }
   pipeline.finish();
   const double wall_s = watch.elapsedMs() / 1e3;
   if (!o.quiet) std::cerr << "\n";

@@ -6,6 +6,10 @@
 #include <sensor_msgs/point_cloud2_iterator.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <fstream>
+#include <iterator>
+#include <string>
+
 #include "tacs_graphs/ros/bag_scan_source.h"
 
 namespace tacs {
@@ -87,6 +91,37 @@ TEST(SimBagWriter, BagScanSourceReadsEveryScanBack) {
   }
   EXPECT_EQ(read, 5);
   EXPECT_TRUE(source.lookupTransform("base_link", "velodyne").has_value());
+}
+
+// The message of a BagScanSource that cannot open `path`.
+std::string openError(const std::string& path) {
+  try {
+    BagScanSource source(path, "/velodyne_points");
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SimBagWriter, BagScanSourceNamesADirectoryAndACutShortBag) {
+  EXPECT_NE(openError(::testing::TempDir()).find("is a directory"), std::string::npos);
+  const std::string path = ::testing::TempDir() + "/sim_cut_test.bag";
+  {
+    SimBagWriter writer(path, Pose3::Identity(), SimBagWriter::Options{});
+    sim::SimScan scan;
+    scan.points.assign(2000, {1.f, 2.f, 3.f, 40.f, 5, 0.01f});
+    for (int i = 0; i < 5; ++i) {
+      scan.stamp = 1000.0 + 0.1 * i;
+      writer.write(scan);
+    }
+  }
+  // The first half of the file: what a recording killed mid-way leaves.
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string cut = ::testing::TempDir() + "/sim_cut_test_half.bag";
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  const std::string error = openError(cut);
+  EXPECT_NE(error.find("rosbag reindex " + cut), std::string::npos) << error;
 }
 
 }  // namespace
