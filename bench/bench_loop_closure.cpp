@@ -15,7 +15,7 @@
 // while it stays in one room (a single-room lab is re-detected as its segmentation refreshes).
 // The room's keyframes are all earlier keyframes inside its polygon. The baselines run on every
 // keyframe with d = 1 m and d = 5 m. A loop is true when its relative pose agrees with ground
-// truth within 0.3 m and 3 deg (PR_loop of DESIGN.md). t_LD counts detection calls only; the
+// truth within 0.3 m and 3 deg (PR_loop of docs/DESIGN.md). t_LD counts detection calls only; the
 // one-off preparation of each keyframe cloud (covariances, KD-tree) is printed separately.
 #include <pcl/common/transforms.h>
 

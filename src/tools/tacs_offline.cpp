@@ -1,5 +1,5 @@
 // tacs_offline: runs the whole pipeline synchronously on a bag (rosbag C++ API, no ROS master) or
-// on a simulated world streamed in-process, and writes the run folder of DESIGN.md.
+// on a simulated world streamed in-process, and writes the run folder of docs/DESIGN.md.
 #include <pcl/common/transforms.h>
 
 #include <filesystem>

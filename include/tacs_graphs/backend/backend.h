@@ -1,6 +1,7 @@
-// The backend: owner of the scene graph (DESIGN.md). It turns keyframes, wall observations, room
-// observations and loop closures into factor-graph measurements, associates walls to landmarks,
-// optimises on schedule and exports the optimised scene graph and the map->odom correction.
+// The backend: owner of the scene graph (docs/DESIGN.md). It turns keyframes, wall observations,
+// room observations and loop closures into factor-graph measurements, associates walls to
+// landmarks, optimises on schedule and exports the optimised scene graph and the map->odom
+// correction.
 #pragma once
 
 #include <map>

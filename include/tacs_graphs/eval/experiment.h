@@ -1,5 +1,5 @@
 // Experiments of tacs_eval: the method configurations compared (config/eval/methods.yaml) and the
-// scores of one finished run folder (DESIGN.md "Evaluation").
+// scores of one finished run folder (docs/DESIGN.md "Evaluation").
 #pragma once
 
 #include <nlohmann/json.hpp>

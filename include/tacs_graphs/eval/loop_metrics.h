@@ -1,4 +1,4 @@
-// Loop-closure accuracy (DESIGN.md "Evaluation", paper Table II): a loop is correct when its
+// Loop-closure accuracy (docs/DESIGN.md "Evaluation", paper Table II): a loop is correct when its
 // measured relative pose agrees with the ground-truth relative pose of its two keyframes within
 // 0.3 m and 3 deg; PR_loop is the share of correct loops.
 #pragma once

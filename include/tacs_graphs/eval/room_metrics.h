@@ -1,4 +1,4 @@
-// Room segmentation metrics (DESIGN.md "Evaluation", paper Sec. IV-B-2).
+// Room segmentation metrics (docs/DESIGN.md "Evaluation", paper Sec. IV-B-2).
 //
 // Regions are compared as rasterised 2D areas on a grid of `cell`: a ground-truth room is the set
 // of cells whose centre lies in its polygon; an estimated room is the set of cells within

@@ -1,4 +1,5 @@
-// Trajectory accuracy: time association, SE(3) alignment, ATE and drift (DESIGN.md "Evaluation").
+// Trajectory accuracy: time association, SE(3) alignment, ATE and drift (docs/DESIGN.md
+// "Evaluation").
 #pragma once
 
 #include <utility>

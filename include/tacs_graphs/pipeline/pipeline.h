@@ -1,6 +1,6 @@
 // The whole SLAM pipeline run synchronously in one thread of control, as tacs_offline and the
-// evaluation use it (the same core classes the ROS nodes run, DESIGN.md "Two ways to run the same
-// core"). Per keyframe: traversability -> traversable map, walls -> backend landmarks, room
+// evaluation use it (the same core classes the ROS nodes run, docs/DESIGN.md "Two ways to run the
+// same core"). Per keyframe: traversability -> traversable map, walls -> backend landmarks, room
 // segmentation -> backend rooms, loop detection (CoSG-LCD on a re-detected room, or the distance
 // baseline) -> backend loops, then the scheduled optimisation. Deterministic for a given input.
 #pragma once

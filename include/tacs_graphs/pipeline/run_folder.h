@@ -1,4 +1,4 @@
-// The run folder of DESIGN.md, written from a finished Pipeline: trajectory_tum.txt,
+// The run folder of docs/DESIGN.md, written from a finished Pipeline: trajectory_tum.txt,
 // odometry_tum.txt, scene_graph.json, timing.json, config.json, map.pcd, map.bt and topdown.png.
 // Every file is written through a temporary file, so a crash never leaves a half-written one.
 #pragma once

@@ -1,7 +1,7 @@
 // What the room_segmentation node keeps around the core RoomSegmenter, without ROS: the
 // per-keyframe inputs (traversable graph, or cloud for the voxel baseline) until the backend has
 // placed the keyframe, the TraversableMap re-posed from the backend's optimised keyframes when
-// they move noticeably (better poses -> better rooms, DESIGN.md), and a WallMap mirroring the
+// they move noticeably (better poses -> better rooms, docs/DESIGN.md), and a WallMap mirroring the
 // backend's wall landmarks with their ids, so that rooms name the backend's walls (paper
 // Sec. III-B, III-C).
 //

@@ -1,5 +1,5 @@
 // The hierarchical scene graph: keyframes, walls, rooms/corridors and loop edges, all in the map
-// frame. The backend owns it; JSON is the run-folder format of DESIGN.md ("scene_graph.json").
+// frame. The backend owns it; JSON is the run-folder format of docs/DESIGN.md ("scene_graph.json").
 #pragma once
 
 #include <Eigen/Core>

@@ -1,4 +1,4 @@
-// A simulated world: plain data read from the JSON world format of DESIGN.md ("The simulated
+// A simulated world: plain data read from the JSON world format of docs/DESIGN.md ("The simulated
 // worlds"). Every length is in metres, every angle in degrees as in the file.
 #pragma once
 
