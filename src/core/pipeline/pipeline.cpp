@@ -2,8 +2,6 @@
 
 #include <pcl/common/transforms.h>
 
-#include <algorithm>
-
 #include "tacs_graphs/odometry/preprocess.h"
 #include "tacs_graphs/traversability/floor_frame.h"
 
