@@ -204,6 +204,27 @@ TEST(WallExtraction, AWallUnderWallCabinetsIsNotSeenOver) {
   EXPECT_TRUE(matching(result.seen_over, {-1, 0, 0}, 5.0).empty());
 }
 
+TEST(WallExtraction, ABeamHangingFromTheCeilingIsNoWallForASensorCarriedHigh) {
+  // A hall seen from 2 m above its floor (z = -2): a beam face y = 3 hangs from the ceiling
+  // (z 3.5..4.5) and runs into the wall x = 4.5. Its plane also takes in the floor along its line,
+  // the strip where it crosses that wall and a few stray returns between: none of them is its
+  // face, so its bottom stays 3.5 m above the sensor.
+  test::SyntheticScene scene;
+  scene.boxRoom(-6, 4.5, -5, 8, -2.0, 6.0);
+  scene.wall({-4, 3}, {4.5, 3}, 3.5, 4.5);
+  for (double z = -1.9; z < 3.5; z += 0.5) scene.add({-2.0 + z, 3.0, z});  // dust, a cable
+  WallExtractionConfig cfg;
+  cfg.seen_over_min_points = 0;  // rays over the beam reach the ceiling: judged by its bottom only
+  cfg.max_wall_bottom = 1.5;
+  const auto result = WallExtractor(cfg).extract(scene.cloud);
+  EXPECT_TRUE(matching(result.walls, {0, -1, 0}, 3.0).empty());
+  EXPECT_EQ(matching(result.walls, {-1, 0, 0}, 4.5).size(), 1u);  // the wall it runs into
+  EXPECT_EQ(matching(result.walls, {1, 0, 0}, 6.0).size(), 1u);
+  // Without the test the beam is a wall.
+  cfg.max_wall_bottom = 0.0;
+  EXPECT_EQ(matching(WallExtractor(cfg).extract(scene.cloud).walls, {0, -1, 0}, 3.0).size(), 1u);
+}
+
 TEST(WallExtraction, AClosedDoorOnAWallIsNoWall) {
   // The wall x = 5 with a 1.1 m door opening (y 0.5..1.6) under a lintel, closed by a door leaf
   // 8 cm in front of the wall: the leaf is flanked by the wall's pieces (and spanned by the

@@ -191,6 +191,53 @@ TEST(WallMap, ALandmarkOnASurfaceSeenOverIsNoWall) {
   EXPECT_TRUE(map.walls().empty());
 }
 
+TEST(WallMap, AWallSeenReachingHighIsNoBenchInFrontOfIt) {
+  // A hall's wall x = 4.5 seen 6 m high, with a bench 0.1 m in front of it along its length that
+  // the sensor sees over (its top 0.5 m up): the bench is not the wall's face seen over.
+  const Pose3 I = Pose3::Identity();
+  WallSegment wall = observation({4.5, -2}, {4.5, 5}, 300);
+  wall.z_max = 6.0;
+  WallSegment bench = observation({4.4, -2}, {4.4, 5}, 100);
+  bench.z_max = 0.5;
+  WallMap map;
+  map.addSeenOver({bench}, I);
+  const uint32_t id = map.associate({wall}, I)[0].landmark_id;
+  EXPECT_FALSE(map.isSeenOver(id));
+  EXPECT_TRUE(map.isWall(id));
+  // One observation that took in the wall behind a cabinet (its top at the wall's) among nine
+  // of the cabinet itself: the mean top stays near the cabinet's, so it stays seen over.
+  WallSegment cabinet = observation({4.4, -2}, {4.4, 5}, 100);
+  cabinet.z_max = 1.9;
+  WallSegment through = cabinet;
+  through.z_max = 6.0;
+  WallMap cabinets;
+  cabinets.addSeenOver({cabinet}, I);
+  std::vector<WallSegment> seen(10, cabinet);
+  seen[0] = through;
+  const uint32_t c = cabinets.associate(seen, I)[0].landmark_id;
+  EXPECT_NEAR(cabinets.landmarks().at(c).mean_top, 2.31, 1e-9);
+  EXPECT_DOUBLE_EQ(cabinets.landmarks().at(c).z_max, 6.0);
+  EXPECT_TRUE(cabinets.isSeenOver(c));
+}
+
+TEST(WallSegment, ATiltedRoundTripKeepsTheHeightRange) {
+  // Into a frame tilted 25 deg (a hand-held sensor) and back: the height range is the wall's,
+  // not a box grown by the tilt.
+  const WallSegment wall = observation({4, -5}, {4, 5}, 100);
+  Pose3 T = Pose3::Identity();
+  T.linear() = Eigen::AngleAxisd(25 * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix() *
+               Eigen::AngleAxisd(-10 * kDeg, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(0.3, -0.2, 1.8);
+  const WallSegment back = transformWall(transformWall(wall, T.inverse()), T);
+  EXPECT_NEAR(back.z_min, wall.z_min, 1e-9);
+  EXPECT_NEAR(back.z_max, wall.z_max, 1e-9);
+  EXPECT_NEAR(back.d, wall.d, 1e-9);
+  // A level transform moves the range by its height.
+  const WallSegment raised = transformWall(wall, Pose3(Eigen::Translation3d(1, 2, 0.5)));
+  EXPECT_NEAR(raised.z_min, 0.5, 1e-9);
+  EXPECT_NEAR(raised.z_max, 3.0, 1e-9);
+}
+
 // A segment on x = `x` (y 0..2.5) facing +x, away from the origin.
 WallSegment facingAway(double x) {
   WallSegment w = observation({x, 0}, {x, 2.5}, 100);

@@ -32,6 +32,9 @@ struct WallLandmark {
   /// Height range (m, map frame).
   double z_min = 0.0;
   double z_max = 0.0;
+  /// Inlier-weighted mean of the observations' tops (m, map frame): how high the face is seen to
+  /// reach, robust to one observation whose plane took in the wall behind.
+  double mean_top = 0.0;
   /// Observations associated (including those of merged landmarks).
   uint32_t observations = 0;
   /// Sum of the inliers of those observations: the weight of the running plane average.
@@ -99,8 +102,8 @@ class WallMap {
   void addSeenOver(const std::vector<WallSegment>& observations_in_base, const Pose3& T_map_base);
 
   /// True when at least half of the landmark's length lies on surfaces seen over: on the same side
-  /// with the plane within half the association distance (a cabinet or a half wall observed from
-  /// too close to see over it), or facing away up to 1 m behind it with no other wall's face
+  /// with the plane within half the association distance and the mean top within 0.5 m of the
+  /// landmark's (a cabinet or a half wall observed from too close to see over it), or facing away up to 1 m behind it with no other wall's face
   /// between (the back of a free-standing cabinet seen over from the far side). Not a wall.
   /// Unknown ids are false.
   bool isSeenOver(uint32_t id) const;

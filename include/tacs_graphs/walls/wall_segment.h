@@ -48,8 +48,8 @@ Eigen::Vector2d projectOntoWallLine(const Eigen::Vector3d& normal, double d,
 void transformPlane(const Pose3& T_a_b, const Eigen::Vector3d& normal_b, double d_b,
                     Eigen::Vector3d* normal_a, double* d_a);
 
-/// The segment expressed in frame a: plane, endpoints (taken at mid height) and z range
-/// (from the four corners). The normal keeps its facing direction, so d may become negative.
+/// The segment expressed in frame a: plane, endpoints (taken at mid height) and z range (the
+/// same span about the moved middle; exact for a level transform). The normal keeps its facing direction, so d may become negative.
 WallSegment transformWall(const WallSegment& wall_b, const Pose3& T_a_b);
 
 }  // namespace tacs

@@ -95,9 +95,9 @@ WallLandmark* closestMatch(Candidates& candidates, LandmarkOf landmark_of, const
 void absorb(const WallLandmark& other, bool average_plane, WallLandmark* target) {
   std::vector<Eigen::Vector2d> ends = {target->endpoints[0], target->endpoints[1],
                                        other.endpoints[0], other.endpoints[1]};
+  const double wt = static_cast<double>(std::max<uint64_t>(target->inliers, 1));
+  const double wo = static_cast<double>(std::max<uint64_t>(other.inliers, 1));
   if (average_plane) {
-    const double wt = static_cast<double>(std::max<uint64_t>(target->inliers, 1));
-    const double wo = static_cast<double>(std::max<uint64_t>(other.inliers, 1));
     const Eigen::Vector3d pt(target->midpoint().x(), target->midpoint().y(), midHeight(*target));
     const Eigen::Vector3d po(other.midpoint().x(), other.midpoint().y(), midHeight(other));
     // Points on each plane near each segment, averaged with the normals.
@@ -106,6 +106,7 @@ void absorb(const WallLandmark& other, bool average_plane, WallLandmark* target)
     target->normal = (wt * target->normal + wo * other.normal).normalized();
     target->d = -target->normal.dot((wt * qt + wo * qo) / (wt + wo));
   }
+  target->mean_top = (wt * target->mean_top + wo * other.mean_top) / (wt + wo);
   target->z_min = std::min(target->z_min, other.z_min);
   target->z_max = std::max(target->z_max, other.z_max);
   target->observations += other.observations;
@@ -119,6 +120,7 @@ WallLandmark landmarkFromObservation(const WallSegment& wall_in_map) {
   w.d = wall_in_map.d;
   w.z_min = wall_in_map.z_min;
   w.z_max = wall_in_map.z_max;
+  w.mean_top = wall_in_map.z_max;
   w.observations = 1;
   w.inliers = wall_in_map.inliers;
   setExtent(&w, {wall_in_map.endpoints[0], wall_in_map.endpoints[1]});
@@ -185,7 +187,8 @@ bool WallMap::isSeenOver(uint32_t id) const {
   // The back of a free-standing cabinet or partition seen over from the other side: a surface
   // facing away, at most kMaxSlab behind, with no face of another wall between the two (a low
   // cabinet in the next room stands in front of that room's face of the wall).
-  constexpr double kMaxSlab = 1.0;  // [m]
+  constexpr double kMaxSlab = 1.0;    // [m]
+  constexpr double kTopMargin = 0.5;  // [m]
   // Other landmarks behind the face and overlapping it along the axis, with their depth: the
   // candidates for a face between the landmark and a back, gathered once for all surfaces.
   std::vector<std::pair<const WallLandmark*, double>> behind;
@@ -204,7 +207,10 @@ bool WallMap::isSeenOver(uint32_t id) const {
   };
   std::vector<std::pair<double, double>> covered;
   for (const WallLandmark& s : seen_over_) {
-    const bool same_face = s.normal.dot(lm.normal) >= min_cos && planeGap(lm, s) <= max_dist;
+    // The landmark itself seen over tops out where the surface does; a surface whose top stays
+    // well below the landmark's is a bench or a radiator in front of a wall seen reaching higher.
+    const bool same_face = s.normal.dot(lm.normal) >= min_cos && planeGap(lm, s) <= max_dist &&
+                           s.mean_top >= lm.mean_top - kTopMargin;
     if (!same_face && !back_of_slab(s)) continue;
     const auto [s_lo, s_hi] = extentOn(axis, s);
     const double s0 = std::max(l0, s_lo), s1 = std::min(l1, s_hi);
@@ -322,6 +328,7 @@ WallMap wallMapFromSceneGraph(const SceneGraph& graph,
     lm.endpoints[1] = wall.endpoints[1];
     lm.z_min = wall.z_range[0];
     lm.z_max = wall.z_range[1];
+    lm.mean_top = lm.z_max;
     const auto count = observations.find(id);
     lm.observations = count == observations.end() ? 1 : std::max<uint32_t>(1, count->second);
   }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace tacs {
 
@@ -33,18 +32,19 @@ void transformPlane(const Pose3& T_a_b, const Eigen::Vector3d& normal_b, double 
 WallSegment transformWall(const WallSegment& wall_b, const Pose3& T_a_b) {
   WallSegment wall_a = wall_b;
   transformPlane(T_a_b, wall_b.normal, wall_b.d, &wall_a.normal, &wall_a.d);
+  // The height range moves with the segment's middle and keeps its span: a wall's height is its
+  // own, and a wall taken into a tilted frame and back (Pipeline: the levelled floor frame, the
+  // base, the map) keeps it instead of growing by the tilt twice.
   const double z_mid = 0.5 * (wall_b.z_min + wall_b.z_max);
-  wall_a.z_min = std::numeric_limits<double>::infinity();
-  wall_a.z_max = -std::numeric_limits<double>::infinity();
+  const double half_span = 0.5 * (wall_b.z_max - wall_b.z_min);
   for (int i = 0; i < 2; ++i) {
     const Eigen::Vector2d& e = wall_b.endpoints[i];
     wall_a.endpoints[i] = (T_a_b * Eigen::Vector3d(e.x(), e.y(), z_mid)).head<2>();
-    for (double z : {wall_b.z_min, wall_b.z_max}) {
-      const double za = (T_a_b * Eigen::Vector3d(e.x(), e.y(), z)).z();
-      wall_a.z_min = std::min(wall_a.z_min, za);
-      wall_a.z_max = std::max(wall_a.z_max, za);
-    }
   }
+  const Eigen::Vector2d mid_b = 0.5 * (wall_b.endpoints[0] + wall_b.endpoints[1]);
+  const double z_mid_a = (T_a_b * Eigen::Vector3d(mid_b.x(), mid_b.y(), z_mid)).z();
+  wall_a.z_min = z_mid_a - half_span;
+  wall_a.z_max = z_mid_a + half_span;
   // Keep the endpoints ordered along the (rotated) wall axis.
   const Eigen::Vector2d axis = wallAxis(wall_a.normal);
   if (axis.dot(wall_a.endpoints[1] - wall_a.endpoints[0]) < 0.0) {
