@@ -2,7 +2,8 @@
 // on a simulated world streamed in-process, and writes the run folder of docs/DESIGN.md.
 #include <pcl/common/transforms.h>
 
-#include <filesystem>
+#include <atomic>
+#include <csignal>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -13,6 +14,7 @@
 #include "tacs_graphs/common/trajectory_io.h"
 #include "tacs_graphs/eval/trajectory_metrics.h"
 #include "tacs_graphs/pipeline/run_folder.h"
+#include "tacs_graphs/pipeline/staged_run_folder.h"
 #include "tacs_graphs/ros/bag_scan_source.h"
 #include "tacs_graphs/sim/ground_truth.h"
 #include "tacs_graphs/sim/scan_stream.h"
@@ -210,7 +212,17 @@ void printAccuracy(const tacs::Pipeline& pipeline, const tacs::Trajectory& groun
   }
 }
 
+// Ctrl-C stops reading scans and leaves --out as it was; a second one kills at once.
+std::atomic<bool> interrupted{false};
+extern "C" void onInterrupt(int) {
+  interrupted = true;
+  std::signal(SIGINT, SIG_DFL);
+}
+
 int run(const Options& o) {
+  // The run is written beside --out and swapped in whole at the end; --out is checked now.
+  tacs::StagedRunFolder out(o.out);
+  std::signal(SIGINT, onInterrupt);
   tacs::LoadedPipelineConfig loaded;
   if (!o.config.empty()) loaded = tacs::loadPipelineConfig(o.config);
   for (const auto& key : loaded.unknown_keys) {
@@ -240,6 +252,10 @@ int run(const Options& o) {
   size_t k = 0;
   while (source->next(&scan)) {
     ++k;
+    if (interrupted) {
+      throw std::runtime_error("interrupted at scan " + std::to_string(k) + ": nothing written; " +
+                               out.path() + " is as it was");
+    }
     if (!scan.error.empty()) {
       if (reported.insert(scan.error).second) {
         std::cerr << "\n[tacs_offline] scan " << k << " skipped: " << scan.error << "\n";
@@ -299,9 +315,10 @@ int run(const Options& o) {
   pipeline.finish();
   const double wall_s = watch.elapsedMs() / 1e3;
   if (!o.quiet) std::cerr << "\n";
-  std::filesystem::create_directories(o.out);
-  tacs::writeRunFolder(o.out, pipeline, {o.bag.empty() ? o.world : o.bag, wall_s});
-  source->writeGroundTruth(o.out);
+  tacs::writeRunFolder(out.stagingPath(), pipeline, {o.bag.empty() ? o.world : o.bag, wall_s});
+  source->writeGroundTruth(out.stagingPath());
+  if (!reference.empty()) tacs::writeTum(out.stagingPath() + "/reference_tum.txt", reference);
+  out.commit();
   const tacs::PipelineStats& stats = pipeline.stats();
   const tacs::SceneGraph graph = pipeline.sceneGraph();
   const size_t walls = graph.wallCount();
@@ -313,7 +330,6 @@ int run(const Options& o) {
             << (wall_s > 0 ? stats.scans / wall_s : 0.0) << " scans/s), t_FGO "
             << pipeline.fgoSeconds() << " s, loops " << graph.loops.size() << ", t_LD "
             << pipeline.ldSeconds() << " s -> " << o.out << "\n";
-  if (!reference.empty()) tacs::writeTum(o.out + "/reference_tum.txt", reference);
   printAccuracy(pipeline, reference.empty() ? source->groundTruth() : reference);
   return stats.scans > stats.rejected_scans ? 0 : 1;
 }

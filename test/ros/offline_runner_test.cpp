@@ -1,0 +1,116 @@
+// tacs_offline run as a user runs it: a fault (an unwritable --out, a folder of something else,
+// Ctrl-C) gives an `error:` line and exit 1 and leaves --out as it was; a run replaces a former
+// run's folder whole.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "common/test_paths.h"
+
+namespace tacs {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int exit_status = -1;
+  std::string output;  // stdout and stderr
+};
+
+// Runs tacs_offline with `args`; with interrupt_after_s > 0 it gets a SIGINT then.
+Outcome runOffline(const std::string& args, double interrupt_after_s = 0.0) {
+  const fs::path log =
+      fs::temp_directory_path() / ("tacs_offline_test_" + std::to_string(getpid()));
+  const std::string command =
+      std::string(TACS_OFFLINE_BIN) + " " + args + " --quiet > " + log.string() + " 2>&1";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    setpgid(0, 0);
+    execl("/bin/sh", "sh", "-c", ("exec " + command).c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  if (interrupt_after_s > 0.0) {
+    std::this_thread::sleep_for(std::chrono::duration<double>(interrupt_after_s));
+    kill(pid, SIGINT);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  Outcome out;
+  out.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(log);
+  out.output.assign(std::istreambuf_iterator<char>(in), {});
+  fs::remove(log);
+  return out;
+}
+
+class OfflineRunner : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() /
+            ("tacs_offline_runner_" + std::to_string(getpid()) + "_" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+    world_ = "--world " + test::sourceDir() + "/worlds/smoke.json";
+  }
+  void TearDown() override { fs::remove_all(root_); }
+  size_t entries(const fs::path& dir) const {
+    return static_cast<size_t>(std::distance(fs::directory_iterator(dir), {}));
+  }
+  fs::path root_;
+  std::string world_;
+};
+
+TEST_F(OfflineRunner, AnUnwritableOutFailsAtOnceAndTouchesNothing) {
+  std::ofstream(root_ / "file") << "keep";
+  for (const fs::path& out : {root_ / "file", root_ / "file" / "run"}) {
+    SCOPED_TRACE(out);
+    const Outcome r = runOffline(world_ + " --out " + out.string());
+    EXPECT_EQ(r.exit_status, 1);
+    EXPECT_NE(r.output.find("error: cannot write the run to " + out.string()), std::string::npos)
+        << r.output;
+    // Before the first scan: the world's 197 scans take seconds.
+    EXPECT_EQ(r.output.find("scans ("), std::string::npos) << r.output;
+  }
+  EXPECT_EQ(entries(root_), 1u);
+}
+
+TEST_F(OfflineRunner, AFolderOfSomethingElseIsNeverReplaced) {
+  fs::create_directories(root_ / "notes");
+  std::ofstream(root_ / "notes" / "todo.txt") << "keep";
+  const Outcome r = runOffline(world_ + " --out " + (root_ / "notes").string());
+  EXPECT_EQ(r.exit_status, 1);
+  EXPECT_NE(r.output.find("error: cannot write the run to"), std::string::npos) << r.output;
+  EXPECT_EQ(entries(root_ / "notes"), 1u);
+}
+
+TEST_F(OfflineRunner, ARunReplacesAFormerRunWholeAndCtrlCLeavesItAsItWas) {
+  const fs::path out = root_ / "run";
+  fs::create_directories(out);
+  std::ofstream(out / "reference_tum.txt") << "a former run's\n";
+  const Outcome done = runOffline(world_ + " --out " + out.string());
+  ASSERT_EQ(done.exit_status, 0) << done.output;
+  EXPECT_FALSE(fs::exists(out / "reference_tum.txt"));  // not left beside the new run
+  for (const char* f : {"trajectory_tum.txt", "scene_graph.json", "map.bt", "ground_truth.json"}) {
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  }
+  EXPECT_EQ(entries(root_), 1u);  // nothing staged left beside it
+  const auto stamp = fs::last_write_time(out / "trajectory_tum.txt");
+  // Ctrl-C in the middle of the next run: an error line, the finished run untouched.
+  const Outcome stopped = runOffline(world_ + " --out " + out.string(), 1.0);
+  EXPECT_EQ(stopped.exit_status, 1);
+  EXPECT_NE(stopped.output.find("error: interrupted"), std::string::npos) << stopped.output;
+  EXPECT_EQ(fs::last_write_time(out / "trajectory_tum.txt"), stamp);
+  EXPECT_EQ(entries(root_), 1u);
+}
+
+}  // namespace
+}  // namespace tacs
