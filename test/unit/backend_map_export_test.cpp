@@ -68,6 +68,59 @@ TEST(MapExport, OctomapMarksTheWallOccupiedAndTheWayFree) {
   std::remove(path.c_str());
 }
 
+TEST(MapExport, OctomapMatchesOctomapsOwnInsertionWithARayToEveryPoint) {
+  // Three keyframes seeing a room's corner from places 0.7 m apart, one wall beyond the range: the
+  // leaves accumulated apart and set once must give OctoMap's insertPointCloud, leaf for leaf.
+  SceneGraph graph;
+  KeyframeClouds clouds;
+  auto room = std::make_shared<PointCloud>(*wallPatch());
+  for (double x = -2; x <= 3; x += 0.07) {
+    pcl::PointXYZI p;
+    p.x = static_cast<float>(x), p.y = 1.5f, p.z = 0.5f;
+    room->push_back(p);
+    p.y = 20.0f;  // beyond octomap_max_range_m: free space only, up to the range
+    room->push_back(p);
+  }
+  for (uint32_t id = 0; id < 3; ++id) {
+    graph.keyframes[id].id = id;
+    graph.keyframes[id].setPose(poseFromXyzRpy(-0.7 * id, 0.2 * id, 0.1, 0, 0, 0.3 * id));
+    clouds[id] = room;
+  }
+  MapExportConfig config;
+  config.octomap_ray_voxel_m = 0.0;
+  const std::string path = ::testing::TempDir() + "/map_export_equal.bt";
+  writeOctomap(path, graph, clouds, config);
+  const octomap::OcTree ours(path);
+  octomap::OcTree expected(config.octomap_resolution_m);
+  for (uint32_t id = 0; id < 3; ++id) {
+    const Pose3 pose = graph.keyframes.at(id).pose();
+    octomap::Pointcloud scan;
+    for (const auto& p : *room) {
+      const Eigen::Vector3d q = pose * Eigen::Vector3d(p.x, p.y, p.z);
+      scan.push_back(static_cast<float>(q.x()), static_cast<float>(q.y()),
+                     static_cast<float>(q.z()));
+    }
+    const Eigen::Vector3d o = pose.translation();
+    expected.insertPointCloud(scan, octomap::point3d(o.x(), o.y(), o.z()),
+                              config.octomap_max_range_m, false, /*discretize=*/true);
+  }
+  size_t leaves = 0, occupied = 0;
+  for (auto it = expected.begin_leafs(); it != expected.end_leafs(); ++it) {
+    const octomap::OcTreeNode* node = ours.search(it.getKey());
+    ASSERT_NE(node, nullptr) << it.getCoordinate();
+    // map.bt keeps free or occupied per leaf (OctoMap's binary format).
+    EXPECT_EQ(ours.isNodeOccupied(node), expected.isNodeOccupied(*it)) << it.getCoordinate();
+    ++leaves;
+    occupied += expected.isNodeOccupied(*it);
+  }
+  EXPECT_GT(leaves, 1000u);
+  EXPECT_GT(occupied, 100u);
+  expected.toMaxLikelihood();
+  expected.prune();
+  EXPECT_EQ(ours.size(), expected.size());
+  std::remove(path.c_str());
+}
+
 TEST(MapExport, PcdRoundTripAndEmptyMap) {
   const std::string path = ::testing::TempDir() + "/map_export_test.pcd";
   writePcdAtomically(path, *wallPatch());

@@ -15,6 +15,7 @@ struct MapExportConfig {
   double cloud_voxel_m = 0.1;               // voxel size of map.pcd and /tacs/map_points [m]
   double octomap_resolution_m = 0.1;        // leaf size of map.bt [m]
   double octomap_max_range_m = 15.0;        // rays longer than this only mark free space so far [m]
+  double octomap_ray_voxel_m = 0.0;         // rays thinned to one per voxel (0: every leaf) [m]
   double topdown_resolution_m = 0.05;       // metres per pixel of topdown.png
   KeyframeRetentionConfig cloud_retention;  // keyframe clouds kept per place for the map
 
@@ -23,6 +24,7 @@ struct MapExportConfig {
     v("cloud_voxel_m", cloud_voxel_m);
     v("octomap_resolution_m", octomap_resolution_m);
     v("octomap_max_range_m", octomap_max_range_m);
+    v("octomap_ray_voxel_m", octomap_ray_voxel_m);
     v("topdown_resolution_m", topdown_resolution_m);
     v("cloud_retention", cloud_retention);
   }

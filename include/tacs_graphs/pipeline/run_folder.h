@@ -3,6 +3,7 @@
 // Every file is written through a temporary file, so a crash never leaves a half-written one.
 #pragma once
 
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -21,7 +22,10 @@ struct RunInfo {
 nlohmann::json timingJson(const Pipeline& pipeline, const RunInfo& info);
 
 /// Writes the whole run folder (created if needed). Throws std::runtime_error naming the file.
-void writeRunFolder(const std::string& dir, const Pipeline& pipeline, const RunInfo& info);
+/// Returns the milliseconds each product took: graph (the text files), map.pcd, map.bt,
+/// topdown.png.
+std::map<std::string, double> writeRunFolder(const std::string& dir, const Pipeline& pipeline,
+                                             const RunInfo& info);
 
 /// Draws topdown.png of a scene graph over the map points.
 void writeTopdown(const std::string& path, const SceneGraph& graph, const PointCloud& map_points,

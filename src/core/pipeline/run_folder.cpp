@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "tacs_graphs/common/file_io.h"
+#include "tacs_graphs/common/timing.h"
 #include "tacs_graphs/common/trajectory_io.h"
 #include "tacs_graphs/viz/scene_graph_drawing.h"
 
@@ -53,8 +54,15 @@ void writeTopdown(const std::string& path, const SceneGraph& graph, const PointC
   canvas.savePng(path);
 }
 
-void writeRunFolder(const std::string& dir, const Pipeline& pipeline, const RunInfo& info) {
+std::map<std::string, double> writeRunFolder(const std::string& dir, const Pipeline& pipeline,
+                                             const RunInfo& info) {
   ensureDirectory(dir);
+  std::map<std::string, double> ms;
+  Stopwatch watch;
+  const auto lap = [&](const char* name) {
+    ms[name] = watch.elapsedMs();
+    watch = Stopwatch();
+  };
   const SceneGraph graph = pipeline.sceneGraph();
   const MapExportConfig& map_config = pipeline.config().map_export;
   writeTum(dir + "/trajectory_tum.txt", pipeline.keyframeTrajectory());
@@ -62,10 +70,15 @@ void writeRunFolder(const std::string& dir, const Pipeline& pipeline, const RunI
   graph.save(dir + "/scene_graph.json");
   writeFileAtomically(dir + "/timing.json", timingJson(pipeline, info).dump(2) + "\n");
   writeFileAtomically(dir + "/config.json", configToJson(pipeline.config()).dump(2) + "\n");
+  lap("graph");
   const PointCloud map = buildMapCloud(graph, pipeline.keyframeClouds(), map_config.cloud_voxel_m);
   writePcdAtomically(dir + "/map.pcd", map);
+  lap("map.pcd");
   writeOctomap(dir + "/map.bt", graph, pipeline.keyframeClouds(), map_config);
+  lap("map.bt");
   writeTopdown(dir + "/topdown.png", graph, map, map_config.topdown_resolution_m);
+  lap("topdown.png");
+  return ms;
 }
 
 }  // namespace tacs
