@@ -3,6 +3,7 @@
 #include <pcl/common/transforms.h>
 
 #include <atomic>
+#include <cctype>
 #include <csignal>
 #include <iomanip>
 #include <iostream>
@@ -212,6 +213,24 @@ void printAccuracy(const tacs::Pipeline& pipeline, const tacs::Trajectory& groun
   }
 }
 
+// The kind of a message about a scan: its text with every number as '#', so that "scan at
+// 12.3 s: 40 NaN points" and "... 41 NaN points" are reported once.
+std::string messageKind(const std::string& text) {
+  std::string kind;
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (!std::isdigit(static_cast<unsigned char>(text[i]))) {
+      kind += text[i];
+      continue;
+    }
+    kind += '#';
+    while (i + 1 < text.size() &&
+           (std::isdigit(static_cast<unsigned char>(text[i + 1])) || text[i + 1] == '.')) {
+      ++i;
+    }
+  }
+  return kind;
+}
+
 // Ctrl-C stops reading scans and leaves --out as it was; a second one kills at once.
 std::atomic<bool> interrupted{false};
 extern "C" void onInterrupt(int) {
@@ -257,7 +276,7 @@ int run(const Options& o) {
                                out.path() + " is as it was");
     }
     if (!scan.error.empty()) {
-      if (reported.insert(scan.error).second) {
+      if (reported.insert(messageKind(scan.error)).second) {
         std::cerr << "\n[tacs_offline] scan " << k << " skipped: " << scan.error << "\n";
       }
       continue;
@@ -282,7 +301,7 @@ int run(const Options& o) {
     }
     const tacs::ScanOutcome outcome =
         pipeline_ptr->processScan(scan.stamp, in_base, times.ok ? &times.offset_s : nullptr);
-    if (!outcome.accepted && reported.insert(outcome.error).second) {
+    if (!outcome.accepted && reported.insert(messageKind(outcome.error)).second) {
       std::cerr << "\n[tacs_offline] scan " << k << " rejected: " << outcome.error << "\n";
     }
     if (!o.quiet && (k % 20 == 0 || k == source->size())) {
@@ -315,7 +334,8 @@ int run(const Options& o) {
   pipeline.finish();
   const double wall_s = watch.elapsedMs() / 1e3;
   if (!o.quiet) std::cerr << "\n";
-  tacs::writeRunFolder(out.stagingPath(), pipeline, {o.bag.empty() ? o.world : o.bag, wall_s});
+  const auto export_ms =
+      tacs::writeRunFolder(out.stagingPath(), pipeline, {o.bag.empty() ? o.world : o.bag, wall_s});
   source->writeGroundTruth(out.stagingPath());
   if (!reference.empty()) tacs::writeTum(out.stagingPath() + "/reference_tum.txt", reference);
   out.commit();
@@ -330,6 +350,9 @@ int run(const Options& o) {
             << (wall_s > 0 ? stats.scans / wall_s : 0.0) << " scans/s), t_FGO "
             << pipeline.fgoSeconds() << " s, loops " << graph.loops.size() << ", t_LD "
             << pipeline.ldSeconds() << " s -> " << o.out << "\n";
+  std::cout << "[tacs_offline] run folder written in" << std::setprecision(1);
+  for (const auto& [name, ms] : export_ms) std::cout << " " << name << " " << ms / 1e3 << " s";
+  std::cout << "\n";
   printAccuracy(pipeline, reference.empty() ? source->groundTruth() : reference);
   return stats.scans > stats.rejected_scans ? 0 : 1;
 }
