@@ -30,15 +30,25 @@ void TraversabilityNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr&
     warnings_.warn("keyframe", WarnOnce::reasonKey(kf.error), kf.error + ", skipped");
     return;
   }
-  const TraversabilityResult result = mapper_.process(*kf.cloud);
+  // A base off the floor (hand-held): the terrain is read in the levelled floor frame under it
+  // (docs/DESIGN.md, frames) and its graph handed on in the base frame, as the pipeline does.
+  Pose3 T_base_ground = Pose3::Identity();
+  PointCloud in_ground;
+  if (config_.traversability.find_floor_under_base) {
+    T_base_ground = floor_tracker_.next(*kf.cloud, kf.T_odom_base).T_base_floor;
+    pcl::transformPointCloud(*kf.cloud, in_ground, T_base_ground.inverse().matrix().cast<float>());
+  }
+  const bool levelled = config_.traversability.find_floor_under_base;
+  TraversabilityResult result = mapper_.process(levelled ? in_ground : *kf.cloud);
   if (!result.warning.empty()) {
     warnings_.warn("traversability", WarnOnce::reasonKey(result.warning), result.warning);
   }
   ++processed_;
+  if (levelled) result.graph = result.graph.transformed(T_base_ground);
   const std::string& odom = config_.frames.odom_frame;
   graph_pub_.publish(toTraversableGraphMsg(result.graph, kf.id, kf.T_odom_base,
                                            config_.frames.base_frame, kf.stamp));
-  const Eigen::Matrix4f T = kf.T_odom_base.matrix().cast<float>();
+  const Eigen::Matrix4f T = (kf.T_odom_base * T_base_ground).matrix().cast<float>();
   if (ground_pub_.getNumSubscribers() > 0 && result.ground) {
     PointCloud ground;
     pcl::transformPointCloud(*result.ground, ground, T);

@@ -1,5 +1,6 @@
 #include "tacs_graphs/ros/wall_extraction_node.h"
 
+#include <pcl/common/transforms.h>
 #include <tacs_graphs/WallObservations.h>
 
 #include "tacs_graphs/ros/graph_messages.h"
@@ -22,8 +23,17 @@ void WallExtractionNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr&
     warnings_.warn("keyframe", WarnOnce::reasonKey(kf.error), kf.error + ", skipped");
     return;
   }
-  // Seen from the sensor: the low-surface and seen-over tests measure rays from there.
-  const WallExtractionResult result = extractor_.extract(*kf.cloud, kf.sensor_in_base);
+  // Seen from the sensor: the low-surface and seen-over tests measure rays from there. A base off
+  // the floor (hand-held) is read in the levelled floor frame, as the pipeline does.
+  WallExtractionResult result;
+  if (config_.traversability.find_floor_under_base) {
+    const Pose3 T_base_floor = floor_tracker_.next(*kf.cloud, kf.T_odom_base).T_base_floor;
+    PointCloud levelled;
+    pcl::transformPointCloud(*kf.cloud, levelled, T_base_floor.inverse().matrix().cast<float>());
+    result = extractor_.extractInFrame(levelled, T_base_floor, kf.sensor_in_base);
+  } else {
+    result = extractor_.extract(*kf.cloud, kf.sensor_in_base);
+  }
   ++processed_;
   tacs_graphs::WallObservations out;
   out.header.stamp = msg->header.stamp;

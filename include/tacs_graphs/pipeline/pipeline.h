@@ -19,6 +19,7 @@
 #include "tacs_graphs/odometry/lidar_odometry.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
 #include "tacs_graphs/rooms/room_segmenter.h"
+#include "tacs_graphs/traversability/floor_frame.h"
 #include "tacs_graphs/traversability/traversable_map.h"
 #include "tacs_graphs/walls/wall_extractor.h"
 
@@ -114,7 +115,7 @@ class Pipeline {
   Backend backend_;
   std::vector<uint32_t> keyframe_ids_;       // in arrival (= stamp) order
   std::map<uint32_t, Pose3> base_to_floor_;  // find_floor_under_base: T_base_floor per keyframe
-  std::optional<double> floor_height_m_;     // ... and the last height of the base above it
+  FloorTracker floor_tracker_;               // ... and where the floor was last seen
   std::vector<double> keyframe_stamps_;
   bool loop_since_pose_update_ = false;
   PipelineStats stats_;

@@ -9,6 +9,7 @@
 
 #include "tacs_graphs/pipeline/pipeline_config.h"
 #include "tacs_graphs/ros/warn_once.h"
+#include "tacs_graphs/traversability/floor_frame.h"
 #include "tacs_graphs/traversability/traversability_mapper.h"
 
 namespace tacs {
@@ -26,6 +27,7 @@ class TraversabilityNode {
 
   PipelineConfig config_;
   TraversabilityMapper mapper_;
+  FloorTracker floor_tracker_;  // traversability.find_floor_under_base: a hand-held sensor
   ros::Subscriber keyframe_sub_;
   ros::Publisher graph_pub_, ground_pub_, obstacle_pub_, marker_pub_;
   WarnOnce warnings_;

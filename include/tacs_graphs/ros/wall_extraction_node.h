@@ -7,6 +7,7 @@
 
 #include "tacs_graphs/pipeline/pipeline_config.h"
 #include "tacs_graphs/ros/warn_once.h"
+#include "tacs_graphs/traversability/floor_frame.h"
 #include "tacs_graphs/walls/wall_extractor.h"
 
 namespace tacs {
@@ -24,6 +25,7 @@ class WallExtractionNode {
 
   PipelineConfig config_;
   WallExtractor extractor_;
+  FloorTracker floor_tracker_;  // traversability.find_floor_under_base: a hand-held sensor
   ros::Subscriber keyframe_sub_;
   ros::Publisher walls_pub_;
   WarnOnce warnings_;

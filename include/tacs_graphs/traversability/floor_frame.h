@@ -23,4 +23,15 @@ struct FloorFrame {
 FloorFrame floorFrameUnder(const PointCloud& cloud_in_base, const Pose3& T_map_base,
                            std::optional<double> last_height_m);
 
+/// The floor frames of a run's keyframes in order: the last height seen stands in where the floor
+/// is not seen. The offline pipeline and the nodes (traversability, wall_extraction) each keep
+/// one and get the same frames from the same keyframes.
+class FloorTracker {
+ public:
+  FloorFrame next(const PointCloud& cloud_in_base, const Pose3& T_map_base);
+
+ private:
+  std::optional<double> last_height_m_;
+};
+
 }  // namespace tacs

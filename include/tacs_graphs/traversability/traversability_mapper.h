@@ -60,6 +60,8 @@ struct TravGraph {
   std::vector<std::pair<uint32_t, uint32_t>> safeEdges() const;
   size_t countTraversable() const;
   size_t countSafe() const;
+  /// The graph moved from its frame b into frame a (node positions and normals).
+  TravGraph transformed(const Pose3& T_a_b) const;
 };
 
 struct TraversabilityResult {

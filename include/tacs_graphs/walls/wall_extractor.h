@@ -149,6 +149,12 @@ class WallExtractor {
   WallExtractionResult extract(const PointCloud& cloud_in_base,
                                const Eigen::Vector3d& viewpoint = Eigen::Vector3d::Zero()) const;
 
+  /// Extracts from a cloud in a base frame that is not gravity-aligned (a hand-held sensor): in
+  /// the levelled frame `T_base_level` (e.g. FloorFrame::T_base_floor), where walls are vertical,
+  /// and returns the segments in the base frame. `viewpoint_in_base`: the sensor in the base.
+  WallExtractionResult extractInFrame(const PointCloud& cloud_in_level, const Pose3& T_base_level,
+                                      const Eigen::Vector3d& viewpoint_in_base) const;
+
   const WallExtractionConfig& config() const { return config_; }
 
  private:

@@ -79,8 +79,7 @@ void Pipeline::processKeyframe(const OdometryResult& odom, ScanOutcome* outcome)
   // A base off the floor (hand-held): walls and terrain are read in the levelled floor frame.
   PointCloud in_floor;
   if (config_.traversability.find_floor_under_base) {
-    const FloorFrame floor = floorFrameUnder(cloud, T_map_base, floor_height_m_);
-    if (floor.floor_seen) floor_height_m_ = floor.height_m;
+    const FloorFrame floor = floor_tracker_.next(cloud, T_map_base);
     base_to_floor_[id] = floor.T_base_floor;
     pcl::transformPointCloud(cloud, in_floor, floor.T_base_floor.inverse().matrix().cast<float>());
   }
@@ -165,14 +164,7 @@ void Pipeline::propagatePoses(bool rebuild_traversable_map) {
 WallExtractionResult Pipeline::extractWalls(uint32_t id, const PointCloud& ground_cloud) {
   const auto floor = base_to_floor_.find(id);
   if (floor == base_to_floor_.end()) return wall_extractor_.extract(ground_cloud, sensor_in_base_);
-  // Extracted level (walls are vertical there), observed in the base frame as the backend wants.
-  const Pose3& T_base_floor = floor->second;
-  WallExtractionResult r =
-      wall_extractor_.extract(ground_cloud, T_base_floor.inverse() * sensor_in_base_);
-  for (auto* list : {&r.walls, &r.seen_over, &r.horizontal}) {
-    for (WallSegment& w : *list) w = transformWall(w, T_base_floor);
-  }
-  return r;
+  return wall_extractor_.extractInFrame(ground_cloud, floor->second, sensor_in_base_);
 }
 
 Pose3 Pipeline::groundPose(uint32_t id) const {

@@ -37,4 +37,10 @@ FloorFrame floorFrameUnder(const PointCloud& cloud_in_base, const Pose3& T_map_b
   return out;
 }
 
+FloorFrame FloorTracker::next(const PointCloud& cloud_in_base, const Pose3& T_map_base) {
+  const FloorFrame floor = floorFrameUnder(cloud_in_base, T_map_base, last_height_m_);
+  if (floor.floor_seen) last_height_m_ = floor.height_m;
+  return floor;
+}
+
 }  // namespace tacs

@@ -30,6 +30,15 @@ size_t TravGraph::countSafe() const {
   return n;
 }
 
+TravGraph TravGraph::transformed(const Pose3& T_a_b) const {
+  TravGraph out = *this;
+  for (TravNode& v : out.nodes) {
+    v.position = T_a_b * v.position;
+    v.normal = T_a_b.linear() * v.normal;
+  }
+  return out;
+}
+
 TraversabilityMapper::TraversabilityMapper(const TraversabilityConfig& config) : config_(config) {
   config_.validate();
 }

@@ -716,4 +716,14 @@ WallExtractionResult WallExtractor::extract(const PointCloud& cloud_in_base,
   return result;
 }
 
+WallExtractionResult WallExtractor::extractInFrame(const PointCloud& cloud_in_level,
+                                                   const Pose3& T_base_level,
+                                                   const Eigen::Vector3d& viewpoint_in_base) const {
+  WallExtractionResult r = extract(cloud_in_level, T_base_level.inverse() * viewpoint_in_base);
+  for (auto* list : {&r.walls, &r.seen_over, &r.horizontal}) {
+    for (WallSegment& w : *list) w = transformWall(w, T_base_level);
+  }
+  return r;
+}
+
 }  // namespace tacs
