@@ -107,27 +107,29 @@ std::string shellQuote(const std::string& s) {
   return q + "'";
 }
 
-/// Runs one experiment through tacs_offline; true when its run folder is complete.
+/// Runs one experiment through tacs_offline; true when its run folder is complete. The run's
+/// configuration, log and done mark lie beside its folder (<dir>.config.json, .log, .done):
+/// tacs_offline replaces the folder whole.
 bool runOne(const tacs::EvalRun& run, const tacs::EvalMethod& method, const nlohmann::json& base,
             const Options& o, std::string* error) {
-  fs::create_directories(run.dir);
+  fs::create_directories(fs::path(run.dir).parent_path());
   // Runs share the cores: one thread each, so N jobs use N cores.
   nlohmann::json one_thread;
   one_thread["odometry"]["gicp"]["num_threads"] = 1;
   const nlohmann::json config =
       tacs::mergeJson(tacs::mergeJson(base, method.overrides), one_thread);
-  tacs::writeFileAtomically(run.dir + "/method_config.json", config.dump(2) + "\n");
+  tacs::writeFileAtomically(run.dir + ".config.json", config.dump(2) + "\n");
   std::string cmd =
       "OMP_WAIT_POLICY=passive OMP_NUM_THREADS=1 " + shellQuote(selfDir() + "/tacs_offline") +
       " --quiet --world " + shellQuote(run.world_path) + " --seed " + std::to_string(run.seed) +
-      " --config " + shellQuote(run.dir + "/method_config.json") + " --out " + shellQuote(run.dir);
+      " --config " + shellQuote(run.dir + ".config.json") + " --out " + shellQuote(run.dir);
   if (o.duration_s > 0) cmd += " --duration " + std::to_string(o.duration_s);
-  cmd += " > " + shellQuote(run.dir + "/log.txt") + " 2>&1";
+  cmd += " > " + shellQuote(run.dir + ".log") + " 2>&1";
   if (std::system(cmd.c_str()) != 0) {
-    *error = "tacs_offline failed, see " + run.dir + "/log.txt";
+    *error = "tacs_offline failed, see " + run.dir + ".log";
     return false;
   }
-  std::ofstream(run.dir + "/done") << "ok\n";
+  std::ofstream(run.dir + ".done") << "ok\n";
   return true;
 }
 
@@ -149,7 +151,7 @@ int run(const Options& o) {
   const std::vector<tacs::EvalRun> runs = tacs::planRuns(o.worlds, methods, o.trials, o.out);
   std::vector<size_t> todo;
   for (size_t i = 0; i < runs.size(); ++i) {
-    if (!fs::exists(runs[i].dir + "/done")) todo.push_back(i);
+    if (!fs::exists(runs[i].dir + ".done")) todo.push_back(i);
   }
   const size_t skipped = runs.size() - todo.size();
   std::atomic<size_t> next{0}, done{skipped};

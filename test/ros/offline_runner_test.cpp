@@ -25,12 +25,11 @@ struct Outcome {
   std::string output;  // stdout and stderr
 };
 
-// Runs tacs_offline with `args`; with interrupt_after_s > 0 it gets a SIGINT then.
-Outcome runOffline(const std::string& args, double interrupt_after_s = 0.0) {
+// Runs `tool` with `args`; with interrupt_after_s > 0 it gets a SIGINT then.
+Outcome runTool(const std::string& tool, const std::string& args, double interrupt_after_s = 0.0) {
   const fs::path log =
       fs::temp_directory_path() / ("tacs_offline_test_" + std::to_string(getpid()));
-  const std::string command =
-      std::string(TACS_OFFLINE_BIN) + " " + args + " --quiet > " + log.string() + " 2>&1";
+  const std::string command = tool + " " + args + " > " + log.string() + " 2>&1";
   const pid_t pid = fork();
   if (pid == 0) {
     setpgid(0, 0);
@@ -49,6 +48,10 @@ Outcome runOffline(const std::string& args, double interrupt_after_s = 0.0) {
   out.output.assign(std::istreambuf_iterator<char>(in), {});
   fs::remove(log);
   return out;
+}
+
+Outcome runOffline(const std::string& args, double interrupt_after_s = 0.0) {
+  return runTool(TACS_OFFLINE_BIN, args + " --quiet", interrupt_after_s);
 }
 
 class OfflineRunner : public ::testing::Test {
@@ -110,6 +113,22 @@ TEST_F(OfflineRunner, ARunReplacesAFormerRunWholeAndCtrlCLeavesItAsItWas) {
   EXPECT_NE(stopped.output.find("error: interrupted"), std::string::npos) << stopped.output;
   EXPECT_EQ(fs::last_write_time(out / "trajectory_tum.txt"), stamp);
   EXPECT_EQ(entries(root_), 1u);
+}
+
+TEST_F(OfflineRunner, TacsEvalKeepsItsOwnFilesBesideEachRunFolder) {
+  // tacs_eval hands each run folder to tacs_offline, which replaces it whole: the run's config,
+  // log and done mark lie beside it.
+  const Outcome r =
+      runTool(TACS_EVAL_BIN, "--worlds " + test::sourceDir() +
+                                 "/worlds/smoke.json --trials 1 --out " + root_.string());
+  ASSERT_EQ(r.exit_status, 0) << r.output;
+  EXPECT_NE(r.output.find("0 failed"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(root_ / "tables.md"));
+  const fs::path trial = root_ / "runs" / "smoke" / "tacs" / "trial1";
+  EXPECT_TRUE(fs::exists(trial / "scene_graph.json"));
+  for (const char* beside : {".config.json", ".log", ".done"}) {
+    EXPECT_TRUE(fs::exists(trial.string() + beside)) << beside;
+  }
 }
 
 }  // namespace
