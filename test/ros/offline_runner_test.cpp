@@ -107,8 +107,10 @@ TEST_F(OfflineRunner, ARunReplacesAFormerRunWholeAndCtrlCLeavesItAsItWas) {
   }
   EXPECT_EQ(entries(root_), 1u);  // nothing staged left beside it
   const auto stamp = fs::last_write_time(out / "trajectory_tum.txt");
-  // Ctrl-C in the middle of the next run: an error line, the finished run untouched.
-  const Outcome stopped = runOffline(world_ + " --out " + out.string(), 1.0);
+  // Ctrl-C in the middle of the next run (a world of 856 scans, far from done after a second): an
+  // error line, the finished run untouched.
+  const Outcome stopped = runOffline(
+      "--world " + test::sourceDir() + "/worlds/lab_room.json --out " + out.string(), 1.0);
   EXPECT_EQ(stopped.exit_status, 1);
   EXPECT_NE(stopped.output.find("error: interrupted"), std::string::npos) << stopped.output;
   EXPECT_EQ(fs::last_write_time(out / "trajectory_tum.txt"), stamp);
