@@ -204,8 +204,14 @@ TraversabilityResult TraversabilityMapper::process(const PointCloud& scan_in_bas
     appendWarning(&result.warning, "no ground found in the scan");
   }
   if (scan.valid > 0 && root < 0) {
-    appendWarning(&result.warning, "no traversable ground under the robot (expected near z = " +
-                                       std::to_string(c.robot_floor_z) + " m in the base frame)");
+    char text[320];
+    std::snprintf(text, sizeof(text),
+                  "no traversable ground under the robot (expected near z = %.2f m in the base "
+                  "frame): is the sensor's mounting height given (frames.base_to_sensor, the "
+                  "launch argument base_to_sensor), or for a hand-held sensor "
+                  "traversability.find_floor_under_base (config/handheld.yaml)?",
+                  c.robot_floor_z);
+    appendWarning(&result.warning, text);
   }
   const double tilt = groundTiltDeg(models, reached);
   if (tilt > c.tilt_warning_deg) {
