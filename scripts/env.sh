@@ -14,3 +14,17 @@ tacs_source_ws() {
 }
 # Path of one of the package's executables in the workspace.
 tacs_bin() { printf '%s/devel/lib/tacs_graphs/%s' "$TACS_WS" "$1"; }
+# The real BALM hall (README "Test data"), looked for where common/data_paths.h looks; prints
+# its folder, or fails with the hint.
+tacs_balm_dir() {
+  local dir
+  for dir in ${TACS_SHARED_DATA_DIR:-} "$REPO/../shared/data" \
+    "${XDG_CACHE_HOME:-$HOME/.cache}/tacs_graphs/data"; do
+    if [ -f "$dir/balm_indoor_hall/balm_to_bag.py" ]; then
+      printf '%s/balm_indoor_hall' "$dir"
+      return 0
+    fi
+  done
+  echo "error: no balm_indoor_hall (README: Test data; bash scripts/get_test_data.sh balm_indoor_hall)" >&2
+  return 1
+}

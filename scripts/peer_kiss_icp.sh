@@ -16,11 +16,7 @@ tacs_source_ws
 KISS="$(cd "${1:?KISS_ICP_SRC}" && pwd -P)"
 SOPHUS="$(cd "${2:?SOPHUS_SRC}" && pwd -P)"
 OUT="${3:-$REPO/results/real}"
-DATA=""
-for dir in ${TACS_SHARED_DATA_DIR:-} "$REPO/../shared/data" "${XDG_CACHE_HOME:-$HOME/.cache}/tacs_graphs/data"; do
-  if [ -f "$dir/balm_indoor_hall/balm_to_bag.py" ]; then DATA="$dir/balm_indoor_hall"; break; fi
-done
-[ -n "$DATA" ] || { echo "error: no balm_indoor_hall (README: Test data)" >&2; exit 1; }
+DATA="$(tacs_balm_dir)"
 for pkg in robin-map-dev libtbb-dev; do
   dpkg -s "$pkg" >/dev/null 2>&1 || { echo "error: apt-get install $pkg" >&2; exit 1; }
 done

@@ -8,11 +8,7 @@ REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)"
 source "$REPO/scripts/env.sh"
 tacs_source_ws
 OUT="${1:-$REPO/results/real}"
-DATA=""
-for dir in ${TACS_SHARED_DATA_DIR:-} "$REPO/../shared/data" "${XDG_CACHE_HOME:-$HOME/.cache}/tacs_graphs/data"; do
-  if [ -f "$dir/balm_indoor_hall/balm_to_bag.py" ]; then DATA="$dir/balm_indoor_hall"; break; fi
-done
-[ -n "$DATA" ] || { echo "error: no balm_indoor_hall with balm_to_bag.py (README: Test data)" >&2; exit 1; }
+DATA="$(tacs_balm_dir)"
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 /usr/bin/python3 "$DATA/balm_to_bag.py" "$WORK/hall.bag"

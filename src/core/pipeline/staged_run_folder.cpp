@@ -40,7 +40,7 @@ bool StagedRunFolder::looksLikeRunFolder(const std::string& dir) {
 
 StagedRunFolder::StagedRunFolder(const std::string& dir) {
   fs::path p = fs::path(dir).lexically_normal();
-  if (p.has_filename() == false && p.has_parent_path()) p = p.parent_path();  // "out/"
+  if (!p.has_filename() && p.has_parent_path()) p = p.parent_path();  // "out/"
   if (p.empty() || p.filename() == "." || p.filename() == "..") {
     fail(dir, "give a folder of its own, not the current or parent folder");
   }
