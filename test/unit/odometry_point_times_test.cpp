@@ -155,6 +155,27 @@ TEST(Deskew, MovesEachPointToTheStampPose) {
   }
 }
 
+TEST(Deskew, ConstantVelocityFollowsTheArcOfATurnBothWaysInTime) {
+  // A robot on a circle of radius 1 m at 1.5 m/s (86 deg/s): the velocity read off one 0.1 s
+  // step gives every pose of the arc, before the stamp too (a sweep stamped at its last point).
+  const double radius = 1.0, speed = 1.5;
+  const auto onArc = [&](double t) {
+    const double yaw = speed * t / radius;
+    Pose3 T = Pose3::Identity();
+    T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).matrix();
+    T.translation() = Eigen::Vector3d(radius * std::sin(yaw), radius * (1.0 - std::cos(yaw)), 0.0);
+    return T;
+  };
+  const BodyVelocity v = velocityOf(onArc(0.1), 0.1);
+  EXPECT_NEAR(v.linear.x(), speed, 1e-9);  // the tangent, not the chord
+  EXPECT_NEAR(v.linear.y(), 0.0, 1e-9);
+  for (double t = -0.1; t <= 0.1001; t += 0.025) {
+    const Pose3 expected = onArc(t), got = motionOver(v, t);
+    EXPECT_LT((got.translation() - expected.translation()).norm(), 1e-9) << "t " << t;
+    EXPECT_LT((got.linear() - expected.linear()).norm(), 1e-9) << "t " << t;
+  }
+}
+
 TEST(Deskew, MismatchedOffsetsLeaveTheScanAsIs) {
   PointCloud scan;
   scan.push_back(pcl::PointXYZI());

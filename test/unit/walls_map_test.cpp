@@ -220,6 +220,34 @@ TEST(WallMap, AWallSeenReachingHighIsNoBenchInFrontOfIt) {
   EXPECT_TRUE(cabinets.isSeenOver(c));
 }
 
+TEST(WallMap, AMachineInFrontOfATallerWallIsNoWall) {
+  // A hall's wall x = 6.7 seen 6 m high and, 0.7 m in front of it, the 2.8 m long face of a
+  // machine 2 m high: the wall was seen above the machine, which bounds no room.
+  const Pose3 I = Pose3::Identity();
+  WallSegment wall = observation({6.7, -25}, {6.7, 15}, 900);
+  wall.z_max = 6.0;
+  WallSegment machine = observation({6.0, -20.7}, {6.0, -17.9}, 120);
+  machine.z_max = 2.0;
+  WallMap map;
+  const auto ids = map.associate({wall, machine}, I);
+  ASSERT_NE(ids[0].landmark_id, ids[1].landmark_id);
+  EXPECT_TRUE(map.standsBeforeATallerWall(ids[1].landmark_id));
+  EXPECT_FALSE(map.isWall(ids[1].landmark_id));
+  EXPECT_TRUE(map.isWall(ids[0].landmark_id));
+  // As high as the wall behind it (a wall of a room's alcove), or further than 1 m in front (the
+  // next wall of a stepped hall), or beside the wall's end: a wall.
+  for (const auto& [front, top] : {std::pair<double, double>{6.0, 5.8}, {5.5, 2.0}}) {
+    WallSegment near = observation({front, -20.7}, {front, -17.9}, 120);
+    near.z_max = top;
+    WallMap m;
+    EXPECT_TRUE(m.isWall(m.associate({wall, near}, I)[1].landmark_id)) << front << " " << top;
+  }
+  WallSegment beside = observation({6.0, 15.5}, {6.0, 18.5}, 120);
+  beside.z_max = 2.0;
+  WallMap m;
+  EXPECT_TRUE(m.isWall(m.associate({wall, beside}, I)[1].landmark_id));
+}
+
 TEST(WallSegment, ATiltedRoundTripKeepsTheHeightRange) {
   // Into a frame tilted 25 deg (a hand-held sensor) and back: the height range is the wall's,
   // not a box grown by the tilt.

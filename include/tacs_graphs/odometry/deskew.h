@@ -10,16 +10,21 @@
 
 namespace tacs {
 
-/// Constant body velocity: the base moves by exp(t * (linear, angular)) in t seconds, the
-/// translation and rotation vector expressed in the base frame at the start of the motion.
+/// Constant body velocity, a twist: the base moves by exp(t * (linear, angular)) in t seconds
+/// (the SE(3) exponential, a screw motion: a turning robot follows the arc, not its chord), both
+/// expressed in the base frame. The same twist holds in the frame at any time of the motion.
 struct BodyVelocity {
-  Eigen::Vector3d linear = Eigen::Vector3d::Zero();   // [m/s]
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero();   // [m/s] velocity of the base origin
   Eigen::Vector3d angular = Eigen::Vector3d::Zero();  // [rad/s] rotation vector per second
 };
 
-/// The pose of the base `t` seconds after the reference, relative to it (the odometry's
-/// constant-velocity prediction: translation v t, rotation exp(w t)).
+/// The pose of the base `t` seconds after the reference (t may be negative), relative to it: the
+/// odometry's constant-velocity prediction.
 Pose3 motionOver(const BodyVelocity& velocity, double t);
+
+/// The constant velocity that moves the base by `step` (relative pose) in `dt` seconds: the
+/// SE(3) logarithm over dt, so that motionOver(velocityOf(step, dt), dt) == step.
+BodyVelocity velocityOf(const Pose3& step, double dt);
 
 /// Returns `scan` (base frame, point i measured offset_s[i] seconds after the reference stamp)
 /// with each point expressed in the base frame at the reference stamp. offset_s must have one

@@ -186,10 +186,9 @@ class LidarOdometry {
   bool initialized_ = false;
   double last_stamp_ = 0.0;
   Pose3 last_pose_ = Pose3::Identity();
-  // Motion per second as (translation, rotation vector) over the last accepted step.
+  // The twist of the last accepted step (the constant-velocity motion model).
   bool has_velocity_ = false;
-  Eigen::Vector3d linear_velocity_ = Eigen::Vector3d::Zero();
-  Eigen::Vector3d angular_velocity_ = Eigen::Vector3d::Zero();
+  BodyVelocity velocity_;
   // Running RMS of the constant-velocity guess's error (translation [m], rotation [rad]): the
   // adaptive correction limits are 3x these.
   double model_error_m_ = 0.0;

@@ -103,12 +103,19 @@ class WallMap {
 
   /// True when at least half of the landmark's length lies on surfaces seen over: on the same side
   /// with the plane within half the association distance and the mean top within 0.5 m of the
-  /// landmark's (a cabinet or a half wall observed from too close to see over it), or facing away up to 1 m behind it with no other wall's face
-  /// between (the back of a free-standing cabinet seen over from the far side). Not a wall.
-  /// Unknown ids are false.
+  /// landmark's (a cabinet or a half wall observed from too close to see over it), or facing away
+  /// up to 1 m behind it with no other wall's face between (the back of a free-standing cabinet
+  /// seen over from the far side). Not a wall. Unknown ids are false.
   bool isSeenOver(uint32_t id) const;
 
-  /// True when the landmark is a wall: at least min_wall_length long and not isSeenOver().
+  /// True when the landmark stands up to 1 m in front of a same-facing wall landmark (at least
+  /// min_wall_length long, overlapping half its length or more) whose mean top is over 0.5 m
+  /// higher: a machine, a shelf or lockers against a wall. The wall was seen above it, so its
+  /// top is open: it bounds no room. Unknown ids are false.
+  bool standsBeforeATallerWall(uint32_t id) const;
+
+  /// True when the landmark is a wall: at least min_wall_length long, not isSeenOver() and not
+  /// standsBeforeATallerWall().
   bool isWall(uint32_t id) const;
 
   /// The landmarks that are walls (isWall()).

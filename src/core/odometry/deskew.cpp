@@ -10,12 +10,40 @@ namespace {
 constexpr double kGridStepS = 5e-4;  // [s] time resolution of the per-point transforms
 }
 
+namespace {
+Eigen::Matrix3d skew(const Eigen::Vector3d& w) {
+  Eigen::Matrix3d k;
+  k << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
+  return k;
+}
+
+// V(w) of the SE(3) exponential: translation = V(w) * v for the twist (v, w) over unit time.
+Eigen::Matrix3d leftJacobian(const Eigen::Vector3d& w) {
+  const double theta = w.norm();
+  const Eigen::Matrix3d k = skew(w);
+  if (theta < 1e-6) return Eigen::Matrix3d::Identity() + 0.5 * k;
+  const double t2 = theta * theta;
+  return Eigen::Matrix3d::Identity() + (1.0 - std::cos(theta)) / t2 * k +
+         (theta - std::sin(theta)) / (t2 * theta) * k * k;
+}
+}  // namespace
+
 Pose3 motionOver(const BodyVelocity& velocity, double t) {
   Pose3 T = Pose3::Identity();
-  T.translation() = velocity.linear * t;
   const Eigen::Vector3d w = velocity.angular * t;
   if (w.norm() > 0.0) T.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).matrix();
+  T.translation() = leftJacobian(w) * (velocity.linear * t);
   return T;
+}
+
+BodyVelocity velocityOf(const Pose3& step, double dt) {
+  BodyVelocity v;
+  if (!(dt > 0.0)) return v;
+  const Eigen::AngleAxisd aa(step.linear());
+  const Eigen::Vector3d w = aa.angle() * aa.axis();
+  v.angular = w / dt;
+  v.linear = leftJacobian(w).inverse() * step.translation() / dt;
+  return v;
 }
 
 PointCloud deskew(const PointCloud& scan, const std::vector<float>& offset_s,

@@ -48,11 +48,6 @@ void OdometryConfig::validate() const {
 
 namespace {
 
-Eigen::Vector3d rotationVector(const Eigen::Matrix3d& R) {
-  const Eigen::AngleAxisd aa(R);
-  return aa.angle() * aa.axis();
-}
-
 std::string format(const char* fmt, double a, double b, double c = 0.0, double d = 0.0) {
   char buffer[256];
   std::snprintf(buffer, sizeof(buffer), fmt, a, b, c, d);
@@ -68,11 +63,7 @@ Pose3 LidarOdometry::predict(double stamp, bool* reset) const {
   // A gap is judged against the sensor's own rate too: a 1 Hz recording is no gap at every scan.
   *reset = !has_velocity_ || dt > std::max(config_.max_time_gap_s, 3.0 * scan_interval_s_);
   if (*reset) return last_pose_;
-  Pose3 delta = Pose3::Identity();
-  delta.translation() = linear_velocity_ * dt;
-  const Eigen::Vector3d w = angular_velocity_ * dt;
-  if (w.norm() > 0.0) delta.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).matrix();
-  return last_pose_ * delta;
+  return last_pose_ * motionOver(velocity_, dt);
 }
 
 bool LidarOdometry::isKeyframe(const Pose3& T_odom_base) const {
@@ -233,8 +224,7 @@ void LidarOdometry::updateMotionModel(double stamp, const Pose3& guess, const Po
                                       bool reset) {
   const double dt = stamp - last_stamp_;
   const Pose3 step = last_pose_.inverse() * pose;
-  linear_velocity_ = step.translation() / dt;
-  angular_velocity_ = rotationVector(step.linear()) / dt;
+  velocity_ = velocityOf(step, dt);
   has_velocity_ = true;
   scan_interval_s_ = scan_interval_s_ > 0.0 ? 0.9 * scan_interval_s_ + 0.1 * dt : dt;
   if (!reset) {  // the guess's error, as a running RMS over about the last 10 scans
@@ -272,7 +262,7 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
   result.motion_prior_reset = reset && initialized_;
   // Deskewed with the guessed motion; without a motion prior the scan stays as measured.
   BodyVelocity velocity;
-  if (!reset) velocity = {linear_velocity_, angular_velocity_};
+  if (!reset) velocity = velocity_;
   PointCloud compensated = compensate(scan, point_offsets_s, velocity, &result.deskewed);
   PointCloud::Ptr cloud(
       new PointCloud(preprocess(compensated, config_.preprocess, &result.preprocess)));
@@ -312,8 +302,7 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
     // the scan as the registered motion would have measured it.
     const double dt = stamp - last_stamp_;
     const Pose3 step = last_pose_.inverse() * result.registration.T_target_source;
-    const BodyVelocity registered{step.translation() / dt, rotationVector(step.linear()) / dt};
-    compensated = compensate(scan, point_offsets_s, registered, &result.deskewed);
+    compensated = compensate(scan, point_offsets_s, velocityOf(step, dt), &result.deskewed);
     cloud.reset(new PointCloud(preprocess(compensated, config_.preprocess, &result.preprocess)));
     scan_gicp = GicpCloud::build(*cloud, config_.gicp.k_neighbors, config_.gicp.num_threads);
   }

@@ -429,16 +429,27 @@ void splitIntoWalls(const Points& pts, const std::vector<uint32_t>& inliers, con
   }
   std::sort(body.begin(), body.end());
   std::sort(edge.begin(), edge.end());
-  size_t e = 0;  // edge inliers are visited once, in order along the wall
+  // Edge inliers join a run only near its body's height: the ceiling line crossing the plane of
+  // a desk front is no top of the desk (rings of a sparse LiDAR far away stay within this).
+  constexpr float kEdgeReach = 1.0f;  // [m]
+  size_t e = 0;                       // edge inliers are visited once, in order along the wall
   std::vector<uint32_t> run;
+  float body_lo = std::numeric_limits<float>::infinity(), body_hi = -body_lo;
   for (size_t k = 0; k < body.size(); ++k) {
     run.push_back(body[k].second);
+    body_lo = std::min(body_lo, pts[body[k].second].z());
+    body_hi = std::max(body_hi, pts[body[k].second].z());
     const bool last = k + 1 == body.size() || body[k + 1].first - body[k].first > cfg.max_gap;
     if (!last) continue;
     const float t0 = body[k + 1 - run.size()].first, t1 = body[k].first;
     for (; e < edge.size() && edge[e].first <= t1; ++e) {
-      if (edge[e].first >= t0) run.push_back(edge[e].second);
+      const float z = pts[edge[e].second].z();
+      if (edge[e].first >= t0 && z >= body_lo - kEdgeReach && z <= body_hi + kEdgeReach) {
+        run.push_back(edge[e].second);
+      }
     }
+    body_lo = std::numeric_limits<float>::infinity();
+    body_hi = -body_lo;
     appendWalls(pts, run, cfg, view, out);
     run.clear();
   }

@@ -225,10 +225,35 @@ bool WallMap::isSeenOver(uint32_t id) const {
   return length >= 0.5 * (l1 - l0);
 }
 
+bool WallMap::standsBeforeATallerWall(uint32_t id) const {
+  const auto it = landmarks_.find(id);
+  if (it == landmarks_.end()) return false;
+  const WallLandmark& lm = it->second;
+  const Eigen::Vector2d axis = wallAxis(lm.normal);
+  const auto [l0, l1] = extentOn(axis, lm);
+  const double max_dist = 0.5 * config_.max_plane_distance;
+  const double min_cos = std::cos(config_.max_normal_angle_deg * M_PI / 180.0);
+  // The same bounds as a surface seen over in front of a wall (isSeenOver()).
+  constexpr double kMaxDepth = 1.0;   // [m]
+  constexpr double kTopMargin = 0.5;  // [m]
+  return std::any_of(landmarks_.begin(), landmarks_.end(), [&](const auto& entry) {
+    const WallLandmark& w = entry.second;
+    if (entry.first == id || w.normal.dot(lm.normal) < min_cos ||
+        w.length() < config_.min_wall_length || w.mean_top < lm.mean_top + kTopMargin) {
+      return false;
+    }
+    // How far the landmark stands in front of w's face.
+    const double gap = planeDistance(w.normal, w.d, lm.midpoint(), midHeight(lm));
+    if (gap <= max_dist || gap > kMaxDepth) return false;
+    const auto [w0, w1] = extentOn(axis, w);
+    return std::min(l1, w1) - std::max(l0, w0) >= 0.5 * (l1 - l0);
+  });
+}
+
 bool WallMap::isWall(uint32_t id) const {
   const auto it = landmarks_.find(id);
   return it != landmarks_.end() && it->second.length() >= config_.min_wall_length &&
-         !isSeenOver(id);
+         !isSeenOver(id) && !standsBeforeATallerWall(id);
 }
 
 std::map<uint32_t, WallLandmark> WallMap::walls() const {
