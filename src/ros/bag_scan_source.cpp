@@ -15,15 +15,13 @@ namespace {
 constexpr const char* kCloudType = "sensor_msgs/PointCloud2";
 }
 
-BagScanSource::BagScanSource(const std::string& path, const std::string& topic,
-                             const PointTimeConfig& point_times)
-    : point_times_(point_times) {
+void openBag(const std::string& path, rosbag::Bag* bag) {
   if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no such file");
   if (std::filesystem::is_directory(path)) {
     throw std::runtime_error(path + ": is a directory, not a bag file (give the .bag inside it)");
   }
   try {
-    bag_.open(path, rosbag::bagmode::Read);
+    bag->open(path, rosbag::bagmode::Read);
   } catch (const rosbag::BagException& e) {
     // A recording cut short (a crash, a full disk) lacks the index at its end.
     const std::string why = e.what();
@@ -33,6 +31,23 @@ BagScanSource::BagScanSource(const std::string& path, const std::string& topic,
         (truncated ? "; it looks cut short: 'rosbag reindex " + path + "' rebuilds its index"
                    : std::string()));
   }
+}
+
+std::vector<std::string> pointCloudTopics(const rosbag::Bag& bag) {
+  std::vector<std::string> topics;
+  for (const auto* c : rosbag::View(bag).getConnections()) {
+    if (c->datatype == kCloudType &&
+        std::find(topics.begin(), topics.end(), c->topic) == topics.end()) {
+      topics.push_back(c->topic);
+    }
+  }
+  return topics;
+}
+
+BagScanSource::BagScanSource(const std::string& path, const std::string& topic,
+                             const PointTimeConfig& point_times)
+    : point_times_(point_times) {
+  openBag(path, &bag_);
   std::string found_type;
   for (const auto* c : rosbag::View(bag_).getConnections()) {
     if (c->topic == topic) found_type = c->datatype;
@@ -108,14 +123,7 @@ Trajectory BagScanSource::readOdometryTopic(const std::string& topic) const {
 }
 
 std::vector<std::string> BagScanSource::pointCloudTopics() const {
-  std::vector<std::string> topics;
-  for (const auto* c : rosbag::View(bag_).getConnections()) {
-    if (c->datatype == kCloudType &&
-        std::find(topics.begin(), topics.end(), c->topic) == topics.end()) {
-      topics.push_back(c->topic);
-    }
-  }
-  return topics;
+  return tacs::pointCloudTopics(bag_);
 }
 
 }  // namespace tacs

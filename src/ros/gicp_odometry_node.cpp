@@ -34,6 +34,8 @@ GicpOdometryNode::GicpOdometryNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
 
   odom_pub_ = nh.advertise<nav_msgs::Odometry>("/tacs/odom", 10);
   keyframe_pub_ = nh.advertise<tacs_graphs::Keyframe>("/tacs/keyframe", 100);
+  // One message per scan handled, used or skipped: what a paced player (play_bag) waits for.
+  scan_done_pub_ = nh.advertise<std_msgs::Header>("/tacs/odometry/scan_done", 100);
   const std::string poses_file = pnh.param<std::string>("poses_file", "");
   if (!poses_file.empty()) {
     // A trajectory file (as tacs_offline --poses): read whole, a bad file stops the node here.
@@ -76,9 +78,15 @@ Pose3 GicpOdometryNode::sensorExtrinsic(const std::string& sensor_frame) {
   if (sameFrame(sensor_frame, base)) return extrinsics_[sensor_frame] = Pose3::Identity();
   try {
     // The extrinsic is static: the latest value is the value. The first lookup waits briefly
-    // for the /tf_static of a bag that has just started.
-    const auto t = tf_buffer_.lookupTransform(base, sensor_frame, ros::Time(0),
-                                              ros::Duration(from_parameter ? 0.0 : 0.5));
+    // for the /tf_static of a bag that has just started, in wall time: under use_sim_time a
+    // paced player (play_bag) holds the clock until this scan is done.
+    const ros::WallTime until =
+        ros::WallTime::now() + ros::WallDuration(from_parameter ? 0.0 : 0.5);
+    while (!tf_buffer_.canTransform(base, sensor_frame, ros::Time(0)) &&
+           ros::WallTime::now() < until) {
+      ros::WallDuration(0.01).sleep();
+    }
+    const auto t = tf_buffer_.lookupTransform(base, sensor_frame, ros::Time(0));
     const Pose3 T = tf2::transformToEigen(t);
     ROS_INFO_STREAM("Sensor extrinsic " << base << " -> " << sensor_frame << " from TF: xyz "
                                         << T.translation().transpose());
@@ -106,7 +114,7 @@ void GicpOdometryNode::externalOdomCallback(const nav_msgs::Odometry::ConstPtr& 
          waiting_for_odometry_.front()->header.stamp.toSec() <= external_->latestStamp()) {
     const auto cloud = waiting_for_odometry_.front();
     waiting_for_odometry_.pop_front();
-    processCloud(cloud);
+    handleCloud(cloud);
   }
 }
 
@@ -123,12 +131,22 @@ void GicpOdometryNode::cloudCallback(const sensor_msgs::PointCloud2::ConstPtr& m
   if (external_ && msg->header.stamp.toSec() > external_->latestStamp()) {
     waiting_for_odometry_.push_back(msg);
     if (waiting_for_odometry_.size() > kMaxScansWaitingForOdometry) {
+      acknowledge(waiting_for_odometry_.front()->header);
       waiting_for_odometry_.pop_front();
       warnings_.warn("cloud", "no external odometry for the scan's time, scan dropped");
     }
     return;
   }
+  handleCloud(msg);
+}
+
+void GicpOdometryNode::handleCloud(const sensor_msgs::PointCloud2::ConstPtr& msg) {
   processCloud(msg);
+  acknowledge(msg->header);
+}
+
+void GicpOdometryNode::acknowledge(const std_msgs::Header& scan_header) {
+  scan_done_pub_.publish(scan_header);
 }
 
 void GicpOdometryNode::processCloud(const sensor_msgs::PointCloud2::ConstPtr& msg) {

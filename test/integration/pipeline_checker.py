@@ -140,12 +140,18 @@ class PipelineTest(unittest.TestCase):
         world = rospy.get_param('~world')
         output_dir = rospy.get_param('~output_dir')
         rate = rospy.get_param('~rate', 1.0)
+        player = rospy.get_param('~player', 'rosbag')
         bag = self.simulate(world)
-        play = subprocess.run(['rosbag', 'play', '--clock', '--quiet', '--delay', '1',
-                               '--rate', str(rate), bag],
-                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=240,
-                              universal_newlines=True)
-        self.assertEqual(play.returncode, 0, 'rosbag play failed:\n' + play.stdout)
+        if player == 'play_bag':  # paced by the odometry: every scan acknowledged, none dropped
+            command = ['rosrun', 'tacs_graphs', 'play_bag', bag, '--topic', '/velodyne_points']
+        else:
+            command = ['rosbag', 'play', '--clock', '--quiet', '--delay', '1', '--rate',
+                       str(rate), bag]
+        play = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                              timeout=240, universal_newlines=True)
+        self.assertEqual(play.returncode, 0, player + ' failed:\n' + play.stdout)
+        if player == 'play_bag':
+            self.assertRegex(play.stdout, r'(\d+) of \1 scans acknowledged \(0 timed out\)')
         self.wait_until_drained(60.0)
         self.assertGreater(self.graphs, 0, 'no /tacs/scene_graph received')
 

@@ -14,6 +14,13 @@
 
 namespace tacs {
 
+/// Opens a bag for reading; throws std::runtime_error with a message a user can act on: no such
+/// file, a directory, not a bag, or a recording cut short ('rosbag reindex').
+void openBag(const std::string& path, rosbag::Bag* bag);
+
+/// The PointCloud2 topics of a bag, in the order of their connections.
+std::vector<std::string> pointCloudTopics(const rosbag::Bag& bag);
+
 class BagScanSource {
  public:
   struct Scan {

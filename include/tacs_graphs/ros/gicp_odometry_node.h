@@ -1,5 +1,6 @@
 // The gicp_odometry node: LiDAR clouds -> LidarOdometry (or external odometry) -> /tacs/odom,
-// TF odom -> base, /tacs/keyframe.
+// TF odom -> base, /tacs/keyframe, and /tacs/odometry/scan_done (std_msgs/Header, the header of
+// every cloud handled, used or skipped: the pace of play_bag).
 //
 // Parameters: the pipeline configuration under ~config_ns (default /tacs; sections frames and
 // odometry), and private ones:
@@ -16,6 +17,7 @@
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
+#include <std_msgs/Header.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
@@ -47,7 +49,11 @@ class GicpOdometryNode {
  private:
   void cloudCallback(const sensor_msgs::PointCloud2::ConstPtr& msg);
   void externalOdomCallback(const nav_msgs::Odometry::ConstPtr& msg);
+  /// processCloud(), then acknowledge() (used or skipped).
+  void handleCloud(const sensor_msgs::PointCloud2::ConstPtr& msg);
   void processCloud(const sensor_msgs::PointCloud2::ConstPtr& msg);
+  /// Publishes the scan's header on /tacs/odometry/scan_done: the scan is done with.
+  void acknowledge(const std_msgs::Header& scan_header);
   /// T_base_sensor for `sensor_frame`: TF first, then frames.base_to_sensor (cached per frame).
   Pose3 sensorExtrinsic(const std::string& sensor_frame);
   void publish(const OdometryResult& result, const Eigen::Vector3d& sensor_in_base);
@@ -62,6 +68,7 @@ class GicpOdometryNode {
   ros::Subscriber external_sub_;
   ros::Publisher odom_pub_;
   ros::Publisher keyframe_pub_;
+  ros::Publisher scan_done_pub_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
