@@ -3,6 +3,7 @@
 #include <tacs_graphs/SceneGraph.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <cmath>
 #include <cstdlib>
 
 #include "tacs_graphs/ros/cloud_conversion.h"
@@ -14,6 +15,9 @@
 
 namespace tacs {
 namespace {
+
+// A graph built from fewer scans than this share of the sensor's is saved with a warning.
+constexpr double kUnreliableDropRatio = 0.05;
 
 std::string defaultOutputDir() {
   if (const char* ros_home = std::getenv("ROS_HOME")) return std::string(ros_home) + "/tacs_graphs";
@@ -77,6 +81,7 @@ void BackendNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg) {
     warnings_.warn("keyframe", "keyframe id already in the graph, skipped");
     return;
   }
+  session_->noteScanInput({msg->scans_received, msg->scans_missing});
   latest_stamp_ = std::max(latest_stamp_, kf.stamp);
   map_dirty_ = true;
   changed_ = true;
@@ -169,6 +174,15 @@ bool BackendNode::save(std::string* message) {
     *message =
         "saved " + std::to_string(session_->keyframeCount()) + " keyframes to " + output_dir_;
     ROS_INFO_STREAM(*message);
+    const auto& input = session_->scanInput();
+    if (input && input->dropRatio() > kUnreliableDropRatio) {
+      ROS_WARN_STREAM("the saved graph was built from "
+                      << input->scans_received << " of "
+                      << input->scans_received + input->scans_missing << " scans ("
+                      << static_cast<int>(std::lround(100.0 * input->dropRatio()))
+                      << " % dropped while the odometry fell behind): fewer scans than the "
+                         "sensor gave; replay the bag with play_bag for the full map");
+    }
     return true;
   } catch (const std::exception& e) {
     *message = std::string("save failed: ") + e.what();

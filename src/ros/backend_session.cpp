@@ -238,6 +238,18 @@ std::string BackendSession::journalText() const {
          ",\"loops\":" + array(journal_loops_) + ",\"rooms\":" + rooms.dump() + "}";
 }
 
+SceneGraph BackendSession::sceneGraph() const {
+  SceneGraph graph = backend_.sceneGraph();
+  graph.input = scan_input_;
+  return graph;
+}
+
+void BackendSession::noteScanInput(const ScanInput& input) {
+  ScanInput& kept = scan_input_ ? *scan_input_ : scan_input_.emplace();
+  kept.scans_received = std::max(kept.scans_received, input.scans_received);
+  kept.scans_missing = std::max(kept.scans_missing, input.scans_missing);
+}
+
 void BackendSession::save(const std::string& dir, const MapExportConfig& map_config) const {
   ensureDirectory(dir);
   const SceneGraph graph = sceneGraph();

@@ -3,6 +3,7 @@
 #include <ros/callback_queue.h>
 #include <rosbag/view.h>
 #include <rosgraph_msgs/Clock.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include <algorithm>
 #include <stdexcept>
@@ -11,6 +12,8 @@
 
 namespace tacs {
 namespace {
+
+constexpr const char* kTfStatic = "/tf_static";
 
 // The busiest PointCloud2 topic: the LiDAR's, when a bag also holds a map or a filtered cloud.
 std::string busiestCloudTopic(const rosbag::Bag& bag) {
@@ -48,6 +51,21 @@ BagPlayer::BagPlayer(ros::NodeHandle& nh, const BagPlayerOptions& options)
                            ros::TransportHints().tcpNoDelay());
 }
 
+void BagPlayer::publishStaticTransforms() {
+  // All of the bag's static transforms in one latched message, before the first cloud: a cloud
+  // recorded before them would meet no extrinsic, and a latched topic keeps only its last message.
+  std::map<std::string, geometry_msgs::TransformStamped> by_child;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag_, rosbag::TopicQuery(kTfStatic))) {
+    if (const auto tf = m.instantiate<tf2_msgs::TFMessage>()) {
+      for (const auto& t : tf->transforms) by_child[t.child_frame_id] = t;
+    }
+  }
+  if (by_child.empty()) return;
+  tf2_msgs::TFMessage all;
+  for (const auto& [child, t] : by_child) all.transforms.push_back(t);
+  publishers_.at(kTfStatic).publish(all);
+}
+
 bool BagPlayer::waitForAcks(size_t wanted, double timeout_s) {
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout_s);
   while (acks_ < wanted) {
@@ -64,7 +82,7 @@ bool BagPlayer::play(BagPlayerResult* result, std::string* error) {
   for (const auto* c : view.getConnections()) {
     if (publishers_.count(c->topic) > 0) continue;
     ros::AdvertiseOptions opts(c->topic, 1000, c->md5sum, c->datatype, c->msg_def);
-    opts.latch = c->topic == "/tf_static";
+    opts.latch = c->topic == kTfStatic;
     publishers_[c->topic] = nh_.advertise(opts);
   }
   ros::Publisher& cloud_pub = publishers_.at(options_.cloud_topic);
@@ -80,6 +98,7 @@ bool BagPlayer::play(BagPlayerResult* result, std::string* error) {
     }
     ros::WallDuration(0.05).sleep();
   }
+  publishStaticTransforms();
   ros::WallDuration(0.2).sleep();  // the connections' headers settle before the first message
   const ros::WallTime start = ros::WallTime::now();
   ros::Time first, last;
@@ -99,8 +118,9 @@ bool BagPlayer::play(BagPlayerResult* result, std::string* error) {
     rosgraph_msgs::Clock clock;
     clock.clock = t;
     clock_pub_.publish(clock);
-    publishers_.at(m.getTopic()).publish(m);
     ++result->messages;
+    if (m.getTopic() == kTfStatic) continue;  // published up front
+    publishers_.at(m.getTopic()).publish(m);
     if (m.getTopic() != options_.cloud_topic) continue;
     ++result->clouds;
     const size_t in_flight = static_cast<size_t>(std::max(1, options_.max_in_flight));

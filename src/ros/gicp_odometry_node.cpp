@@ -119,15 +119,12 @@ void GicpOdometryNode::externalOdomCallback(const nav_msgs::Odometry::ConstPtr& 
 }
 
 void GicpOdometryNode::cloudCallback(const sensor_msgs::PointCloud2::ConstPtr& msg) {
+  // Scans missing before this one: the queue of ~points_queue_size was full (the odometry is
+  // slower than the sensor or the bag rate) or the input has a gap. Reported per window.
   const size_t missing = scan_gaps_.observe(msg->header.stamp.toSec());
-  if (missing > 0) {
-    ROS_WARN_STREAM_THROTTLE(10.0, "cloud: " << missing << " scan(s) missing before stamp "
-                                             << std::fixed << msg->header.stamp.toSec() << " ("
-                                             << scan_gaps_.missingTotal()
-                                             << " so far): the queue of ~points_queue_size was "
-                                                "full (odometry slower than the sensor or the "
-                                                "bag rate) or the input has a gap");
-  }
+  const double now = ros::WallTime::now().toSec();
+  overload_.arrived(now, missing);
+  if (const auto report = overload_.poll(now)) ROS_WARN_STREAM("odometry: " << *report);
   if (external_ && msg->header.stamp.toSec() > external_->latestStamp()) {
     waiting_for_odometry_.push_back(msg);
     if (waiting_for_odometry_.size() > kMaxScansWaitingForOdometry) {
@@ -196,9 +193,12 @@ void GicpOdometryNode::publish(const OdometryResult& result,
   }
   if (!result.is_keyframe || !result.keyframe_cloud) return;
   // The odometry hands the keyframe cloud at odometry.keyframe_cloud_voxel_m.
-  keyframe_pub_.publish(toKeyframeMsg(result.keyframe_id, result.stamp, result.T_odom_base,
-                                      result.information, *result.keyframe_cloud, sensor_in_base,
-                                      f.odom_frame, f.base_frame));
+  tacs_graphs::Keyframe msg =
+      toKeyframeMsg(result.keyframe_id, result.stamp, result.T_odom_base, result.information,
+                    *result.keyframe_cloud, sensor_in_base, f.odom_frame, f.base_frame);
+  msg.scans_received = static_cast<uint32_t>(overload_.arrivedTotal());
+  msg.scans_missing = static_cast<uint32_t>(scan_gaps_.missingTotal());
+  keyframe_pub_.publish(msg);
 }
 
 }  // namespace tacs

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 namespace tacs {
@@ -29,6 +30,31 @@ size_t ScanGapMonitor::observe(double stamp) {
   const size_t missing = static_cast<size_t>(std::lround(step / known_period)) - 1;
   missing_total_ += missing;
   return missing;
+}
+
+void OverloadMonitor::arrived(double wall_s, size_t missing) {
+  if (!window_start_) window_start_ = wall_s;
+  ++arrived_;
+  ++arrived_total_;
+  missing_ += missing;
+}
+
+std::optional<std::string> OverloadMonitor::poll(double wall_s) {
+  if (!window_start_ || wall_s - *window_start_ < window_s_) return std::nullopt;
+  const double span = wall_s - *window_start_;
+  const size_t arrived = arrived_, missing = missing_, produced = arrived + missing;
+  window_start_ = wall_s;
+  arrived_ = missing_ = 0;
+  if (missing == 0) return std::nullopt;
+  char text[320];
+  std::snprintf(text, sizeof(text),
+                "falling behind: %zu of %zu scans of the last %.0f s dropped (%.0f %%): "
+                "%.1f scans/s handled of %.1f produced (%.2fx real time); the map is built from "
+                "fewer scans (the drop ratio is saved in scene_graph.json, \"input\"). Play bags "
+                "with play_bag, or lighten the odometry (odometry.preprocess.max_points)",
+                missing, produced, span, 100.0 * missing / produced, arrived / span,
+                produced / span, static_cast<double>(arrived) / produced);
+  return std::string(text);
 }
 
 }  // namespace tacs

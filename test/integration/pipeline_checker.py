@@ -180,6 +180,12 @@ class PipelineTest(unittest.TestCase):
         # Keyframes every 0.5 m: at least one per metre of path proves that no part was lost.
         self.assertGreaterEqual(len(keyframes), int(path), 'too few keyframes')
         rospy.loginfo('%d keyframes over %.1f m of path', len(keyframes), path)
+        # The base stays on the flat floor: every keyframe at the height of the first, which a
+        # first scan mapped without its extrinsic (sensor height) would not be.
+        ordered = sorted(keyframes, key=lambda k: k['id'])
+        z0 = ordered[0]['position'][2]
+        worst = max(abs(k['position'][2] - z0) for k in ordered)
+        self.assertLess(worst, 0.15, 'keyframe heights stray %.2f m from the first' % worst)
 
     def world_from_map(self, saved, truth):
         """T_world_map from the first keyframe and the ground-truth pose at its stamp."""

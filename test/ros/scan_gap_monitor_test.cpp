@@ -48,5 +48,25 @@ TEST(ScanGapMonitor, KeepsCountingWhenTheNodeFallsBehindForGood) {
   EXPECT_NEAR(monitor.period(), 0.1, 1e-9);
 }
 
+TEST(OverloadMonitor, ReportsAWindowWithDropsOnceAndQuietWindowsNever) {
+  OverloadMonitor monitor(10.0);
+  // 10 s of a 10 Hz sensor, every scan handled: no report.
+  for (int i = 0; i < 100; ++i) monitor.arrived(0.1 * i, 0);
+  EXPECT_FALSE(monitor.poll(9.9));
+  EXPECT_FALSE(monitor.poll(10.0));
+  // The next 10 s: 40 scans handled, 60 missing before them.
+  for (int i = 0; i < 40; ++i) monitor.arrived(10.0 + 0.25 * i, i % 2 == 0 ? 1 : 2);
+  EXPECT_FALSE(monitor.poll(19.0));  // the window is still open
+  const auto report = monitor.poll(20.0);
+  ASSERT_TRUE(report);
+  EXPECT_NE(report->find("60 of 100 scans of the last 10 s dropped (60 %)"), std::string::npos)
+      << *report;
+  EXPECT_NE(report->find("4.0 scans/s handled of 10.0 produced (0.40x real time)"),
+            std::string::npos)
+      << *report;
+  EXPECT_FALSE(monitor.poll(20.5));  // reported once
+  EXPECT_EQ(monitor.arrivedTotal(), 140u);
+}
+
 }  // namespace
 }  // namespace tacs

@@ -78,6 +78,22 @@ TEST(SceneGraph, JsonRoundTripIsExact) {
   EXPECT_EQ(back.loops[0].to, 2u);
 }
 
+TEST(SceneGraph, TheScanInputOfALiveGraphRoundTrips) {
+  SceneGraph g = makeGraph();
+  EXPECT_FALSE(g.toJson().contains("input"));  // offline graphs have none
+  EXPECT_FALSE(SceneGraph::fromJson(g.toJson()).input);
+  g.input = ScanInput{60, 54};
+  const nlohmann::json j = g.toJson();
+  EXPECT_NEAR(j["input"]["drop_ratio"].get<double>(), 54.0 / 114.0, 1e-12);
+  const SceneGraph back = SceneGraph::fromJson(j);
+  ASSERT_TRUE(back.input);
+  EXPECT_EQ(back.input->scans_received, 60u);
+  EXPECT_EQ(back.input->scans_missing, 54u);
+  nlohmann::json bad = j;
+  bad["input"]["scans_missing"] = -3;
+  EXPECT_THROW(SceneGraph::fromJson(bad), std::runtime_error);
+}
+
 TEST(SceneGraph, SaveAndLoadRoundTripExactly) {
   const std::string path = ::testing::TempDir() + "/scene_graph_test.json";
   const SceneGraph g = makeGraph();

@@ -57,8 +57,11 @@ class BackendSession {
   std::optional<OptimizationReport> optimizeIfDue() { return backend_.optimizeIfDue(); }
   OptimizationReport optimize() { return backend_.optimize(); }
 
-  /// The optimised scene graph with the room nodes and the keyframes' room ids.
-  SceneGraph sceneGraph() const { return backend_.sceneGraph(); }
+  /// The optimised scene graph with the room nodes, the keyframes' room ids and the scan input.
+  SceneGraph sceneGraph() const;
+  /// The odometry's scan counts (from its keyframes); the largest seen are kept.
+  void noteScanInput(const ScanInput& input);
+  const std::optional<ScanInput>& scanInput() const { return scan_input_; }
   Pose3 mapToOdom() const { return backend_.mapToOdom(); }
   std::map<uint32_t, uint32_t> wallObservationCounts() const;
   size_t keyframeCount() const { return journal_keyframes_.size(); }
@@ -89,6 +92,7 @@ class BackendSession {
   PipelineConfig config_;
   BackendSessionOptions options_;
   Backend backend_;
+  std::optional<ScanInput> scan_input_;
   MapClouds clouds_;
   PointCloud::Ptr recovered_map_;
   std::map<uint32_t, KeyframeWalls> pending_walls_;

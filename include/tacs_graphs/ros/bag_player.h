@@ -1,7 +1,8 @@
 // A bag player paced by the suite: every message of a bag is published in order with /clock, and
 // after each point cloud the player waits until the odometry says it handled that scan
 // (/tacs/odometry/scan_done). The bag then plays as fast as the suite keeps up, and no scan is
-// dropped from a full queue, as hdl_graph_slam's bag_player and glim_rosbag do.
+// dropped from a full queue, as hdl_graph_slam's bag_player and glim_rosbag do. The bag's
+// static transforms go out first, merged into one latched /tf_static.
 #pragma once
 
 #include <ros/ros.h>
@@ -52,6 +53,7 @@ class BagPlayer {
  private:
   void onAck(const std_msgs::Header::ConstPtr&) { ++acks_; }
   bool waitForAcks(size_t wanted, double timeout_s);
+  void publishStaticTransforms();
 
   ros::NodeHandle& nh_;
   BagPlayerOptions options_;

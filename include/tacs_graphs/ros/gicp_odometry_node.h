@@ -76,6 +76,7 @@ class GicpOdometryNode {
   std::set<std::string> fallback_frames_;  // extrinsic from frames.base_to_sensor, not TF
   WarnOnce warnings_;
   ScanGapMonitor scan_gaps_;
+  OverloadMonitor overload_;
   std::optional<double> last_stamp_;
   size_t scans_processed_ = 0;
 };

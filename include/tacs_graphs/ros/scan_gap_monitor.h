@@ -8,6 +8,8 @@
 
 #include <cstddef>
 #include <deque>
+#include <optional>
+#include <string>
 
 namespace tacs {
 
@@ -28,6 +30,27 @@ class ScanGapMonitor {
   double last_stamp_ = 0.0;
   bool has_last_ = false;
   size_t missing_total_ = 0;
+};
+
+/// Whether the odometry keeps up, over windows of wall time: the scans that arrived (each is
+/// handled, in order) and those missing before them (ScanGapMonitor). A window with missing scans
+/// closes with one report: the drop ratio and the rate handled against the rate produced.
+class OverloadMonitor {
+ public:
+  explicit OverloadMonitor(double window_s = 10.0) : window_s_(window_s) {}
+
+  /// A scan arrived at wall time `wall_s`, with `missing` scans lost before it.
+  void arrived(double wall_s, size_t missing);
+
+  /// The report of the window that has closed by `wall_s`, when scans went missing in it.
+  std::optional<std::string> poll(double wall_s);
+
+  size_t arrivedTotal() const { return arrived_total_; }
+
+ private:
+  double window_s_;
+  std::optional<double> window_start_;
+  size_t arrived_ = 0, missing_ = 0, arrived_total_ = 0;
 };
 
 }  // namespace tacs

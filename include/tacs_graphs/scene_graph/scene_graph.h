@@ -7,6 +7,7 @@
 #include <array>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,11 +63,23 @@ struct LoopEdge {
   Pose3 relativePose() const;
 };
 
+/// The scans a live graph was built from: a suite that falls behind maps fewer scans.
+struct ScanInput {
+  uint64_t scans_received = 0;
+  uint64_t scans_missing = 0;
+  double dropRatio() const {
+    const uint64_t produced = scans_received + scans_missing;
+    return produced == 0 ? 0.0 : static_cast<double>(scans_missing) / produced;
+  }
+};
+
 struct SceneGraph {
   std::map<uint32_t, KeyframeNode> keyframes;
   std::map<uint32_t, WallNode> walls;
   std::map<uint32_t, RoomNode> rooms;
   std::vector<LoopEdge> loops;
+  /// Set by the live backend ("input" in the JSON); absent offline.
+  std::optional<ScanInput> input;
 
   /// Wall nodes that are walls of the building (WallNode::is_wall), not other planes.
   size_t wallCount() const;

@@ -139,6 +139,11 @@ json SceneGraph::toJson() const {
          {"relative_pose", {{"position", vec(l.position)}, {"orientation", quat(l.orientation)}}},
          {"score", l.score}});
   }
+  if (input) {
+    j["input"] = {{"scans_received", input->scans_received},
+                  {"scans_missing", input->scans_missing},
+                  {"drop_ratio", input->dropRatio()}};
+  }
   return j;
 }
 
@@ -221,6 +226,13 @@ SceneGraph SceneGraph::fromJson(const json& j) {
                                p + ".relative_pose.orientation");
     l.score = number(field(loops[i], "score", p), p + ".score");
     g.loops.push_back(l);
+  }
+  if (j.contains("input")) {
+    const json& in = j.at("input");
+    ScanInput s;
+    s.scans_received = index(field(in, "scans_received", "input"), "input.scans_received");
+    s.scans_missing = index(field(in, "scans_missing", "input"), "input.scans_missing");
+    g.input = s;
   }
   return g;
 }
