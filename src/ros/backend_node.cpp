@@ -54,10 +54,11 @@ BackendNode::BackendNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
       nh.subscribe("/tacs/room_observations", 100, &BackendNode::roomsCallback, this, hints);
   loop_sub_ = nh.subscribe("/tacs/loop_closures", 100, &BackendNode::loopCallback, this, hints);
   save_srv_ = pnh.advertiseService("save", &BackendNode::saveService, this);
-  tf_timer_ = nh.createTimer(ros::Duration(1.0 / pnh.param("tf_rate_hz", 20.0)),
+  tf_timer_ = nh.createTimer(ros::Duration(1.0 / boundedParam(pnh, "tf_rate_hz", 20.0, 0.0, false)),
                              &BackendNode::publishTf, this);
-  map_timer_ = nh.createTimer(ros::Duration(pnh.param("map_publish_period_s", 5.0)),
-                              &BackendNode::publishMap, this);
+  map_timer_ =
+      nh.createTimer(ros::Duration(boundedParam(pnh, "map_publish_period_s", 5.0, 0.0, false)),
+                     &BackendNode::publishMap, this);
   if (session_->keyframeCount() > 0) update();
   ROS_INFO_STREAM("Backend ready; products go to " << output_dir_);
 }

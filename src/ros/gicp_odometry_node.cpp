@@ -41,9 +41,9 @@ GicpOdometryNode::GicpOdometryNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
     // A trajectory file (as tacs_offline --poses): read whole, a bad file stops the node here.
     const Trajectory poses = readTum(poses_file, /*require_increasing=*/true);
     if (poses.size() < 2) throw std::runtime_error(poses_file + ": fewer than 2 poses");
-    external_ = ExternalOdometry::fromTrajectory(config_.odometry, poses,
-                                                 pnh.param("external_odom_sigma_xyz_m", 0.02),
-                                                 pnh.param("external_odom_sigma_rot_deg", 0.5));
+    external_ = ExternalOdometry::fromTrajectory(
+        config_.odometry, poses, boundedParam(pnh, "external_odom_sigma_xyz_m", 0.02, 0.0, false),
+        boundedParam(pnh, "external_odom_sigma_rot_deg", 0.5, 0.0, false));
     ROS_INFO_STREAM("Odometry from " << poses_file << " (" << poses.size() << " poses, "
                                      << std::fixed << poses.front().stamp << " to "
                                      << poses.back().stamp << ") with clouds on "
@@ -52,15 +52,15 @@ GicpOdometryNode::GicpOdometryNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
     gicp_ = std::make_unique<LidarOdometry>(config_.odometry);
     ROS_INFO_STREAM("GICP odometry on " << nh.resolveName(points_topic));
   } else {
-    external_ = std::make_unique<ExternalOdometry>(config_.odometry,
-                                                   pnh.param("external_odom_sigma_xyz_m", 0.05),
-                                                   pnh.param("external_odom_sigma_rot_deg", 1.0));
+    external_ = std::make_unique<ExternalOdometry>(
+        config_.odometry, boundedParam(pnh, "external_odom_sigma_xyz_m", 0.05, 0.0, false),
+        boundedParam(pnh, "external_odom_sigma_rot_deg", 1.0, 0.0, false));
     external_sub_ = nh.subscribe(external_topic, 200, &GicpOdometryNode::externalOdomCallback, this,
                                  ros::TransportHints().tcpNoDelay());
     ROS_INFO_STREAM("External odometry " << nh.resolveName(external_topic) << " with clouds on "
                                          << nh.resolveName(points_topic));
   }
-  const int queue_size = std::max(1, pnh.param("points_queue_size", 30));
+  const int queue_size = static_cast<int>(boundedParam(pnh, "points_queue_size", 30, 1, true));
   cloud_sub_ = nh.subscribe(points_topic, queue_size, &GicpOdometryNode::cloudCallback, this,
                             ros::TransportHints().tcpNoDelay());
 }

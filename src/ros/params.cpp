@@ -2,6 +2,9 @@
 
 #include <ros/console.h>
 
+#include <cmath>
+#include <sstream>
+
 namespace tacs {
 
 nlohmann::json xmlRpcToJson(XmlRpc::XmlRpcValue& value) {
@@ -47,6 +50,19 @@ PipelineConfig loadPipelineConfigFromRos(const ros::NodeHandle& nh, const std::s
   }
   ROS_DEBUG_STREAM("Effective configuration: " << configToJson(config).dump());
   return config;
+}
+
+double checkedParam(const std::string& name, double value, double min, bool inclusive) {
+  std::ostringstream reason;
+  reason << "must be " << (inclusive ? ">= " : "> ") << min << ", got " << value;
+  requireConfig(std::isfinite(value) && (inclusive ? value >= min : value > min), name,
+                reason.str());
+  return value;
+}
+
+double boundedParam(const ros::NodeHandle& pnh, const std::string& name, double fallback,
+                    double min, bool inclusive) {
+  return checkedParam(pnh.resolveName(name), pnh.param(name, fallback), min, inclusive);
 }
 
 }  // namespace tacs

@@ -15,9 +15,11 @@ RoomSegmentationNode::RoomSegmentationNode(ros::NodeHandle& nh, ros::NodeHandle&
     : config_(loadPipelineConfigFromRos(nh, pnh.param<std::string>("config_ns", "/tacs"))) {
   RoomSegmentationOptions options;
   options.max_wait_keyframes =
-      static_cast<uint32_t>(std::max(0, pnh.param("max_wait_keyframes", 5)));
-  options.repose_distance_m = pnh.param("repose_distance_m", options.repose_distance_m);
-  options.repose_angle_deg = pnh.param("repose_angle_deg", options.repose_angle_deg);
+      static_cast<uint32_t>(boundedParam(pnh, "max_wait_keyframes", 5, 0, true));
+  options.repose_distance_m =
+      boundedParam(pnh, "repose_distance_m", options.repose_distance_m, 0.0, true);
+  options.repose_angle_deg =
+      boundedParam(pnh, "repose_angle_deg", options.repose_angle_deg, 0.0, true);
   session_ = std::make_unique<RoomSegmentationSession>(config_, options);
 
   rooms_pub_ = nh.advertise<tacs_graphs::RoomObservations>("/tacs/room_observations", 100);

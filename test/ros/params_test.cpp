@@ -1,7 +1,9 @@
 // The parameter-server bridge, tested on XmlRpc values built in memory (no ROS master).
+#include "tacs_graphs/ros/params.h"
+
 #include <gtest/gtest.h>
 
-#include "tacs_graphs/ros/params.h"
+#include <cmath>
 
 namespace tacs {
 namespace {
@@ -29,6 +31,22 @@ TEST(XmlRpcToJson, FeedsThePipelineConfig) {
   root["frames"]["base_to_sensor"] = std::string("oops");
   EXPECT_THROW(configFromJson(xmlRpcToJson(root), "ROS parameter /tacs", &config, &unknown),
                ConfigError);
+}
+
+TEST(NodeParams, ABadPrivateNumberIsAConfigErrorNamingIt) {
+  EXPECT_DOUBLE_EQ(checkedParam("/backend/tf_rate_hz", 20.0, 0.0, false), 20.0);
+  EXPECT_DOUBLE_EQ(checkedParam("/room_segmentation/repose_angle_deg", 0.0, 0.0, true), 0.0);
+  for (const double bad : {0.0, -1.0, std::nan("")}) {
+    try {
+      checkedParam("/backend/tf_rate_hz", bad, 0.0, false);
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("/backend/tf_rate_hz: must be > 0, got"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_THROW(checkedParam("/gicp_odometry/points_queue_size", 0, 1, true), ConfigError);
 }
 
 }  // namespace

@@ -22,4 +22,13 @@ nlohmann::json xmlRpcToJson(XmlRpc::XmlRpcValue& value);
 /// Throws ConfigError naming the parameter; nodes catch it, log it and shut down.
 PipelineConfig loadPipelineConfigFromRos(const ros::NodeHandle& nh, const std::string& ns);
 
+/// A node-private number with its lower bound, checked like the YAML: throws ConfigError
+/// ("<name>: must be > 0, got -1") unless value > min (or >= min when `inclusive`).
+double checkedParam(const std::string& name, double value, double min, bool inclusive);
+
+/// Reads the private parameter `~name` (default `fallback`) and checks it (checkedParam()); the
+/// error names the resolved parameter.
+double boundedParam(const ros::NodeHandle& pnh, const std::string& name, double fallback,
+                    double min, bool inclusive);
+
 }  // namespace tacs
