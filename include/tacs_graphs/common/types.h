@@ -29,4 +29,7 @@ Pose3 poseFromXyzRpy(double x, double y, double z, double roll, double pitch, do
 /// The angle of a pose's rotation (about its axis), in degrees.
 double rotationAngleDeg(const Pose3& T);
 
+/// The cross-product matrix [v]x: skew(v) * u == v.cross(u).
+Eigen::Matrix3d skew(const Eigen::Vector3d& v);
+
 }  // namespace tacs

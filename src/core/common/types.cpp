@@ -16,4 +16,10 @@ double rotationAngleDeg(const Pose3& T) {
   return Eigen::AngleAxisd(T.linear()).angle() * 180.0 / M_PI;
 }
 
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
 }  // namespace tacs

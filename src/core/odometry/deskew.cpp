@@ -8,14 +8,6 @@ namespace tacs {
 
 namespace {
 constexpr double kGridStepS = 5e-4;  // [s] time resolution of the per-point transforms
-}
-
-namespace {
-Eigen::Matrix3d skew(const Eigen::Vector3d& w) {
-  Eigen::Matrix3d k;
-  k << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
-  return k;
-}
 
 // V(w) of the SE(3) exponential: translation = V(w) * v for the twist (v, w) over unit time.
 Eigen::Matrix3d leftJacobian(const Eigen::Vector3d& w) {

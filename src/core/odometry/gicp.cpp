@@ -29,12 +29,6 @@ void GicpConfig::validate() const {
 
 namespace {
 
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
-
 // T * Exp(delta) with delta = (v, w) on the right: t += R v, R = R Exp(w).
 Pose3 retract(const Pose3& T, const Vector6d& delta) {
   Pose3 out = T;

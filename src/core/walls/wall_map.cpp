@@ -19,6 +19,12 @@ void WallAssociationConfig::validate() const {
 
 namespace {
 
+// A cabinet, partition or machine stands at most this far in front of the wall behind it (m),
+// and a face seen reaching this much higher than another is another surface (m): the bounds of
+// isSeenOver() and standsBeforeATallerWall().
+constexpr double kMaxSlab = 1.0;
+constexpr double kTopMargin = 0.5;
+
 double midHeight(const WallLandmark& w) { return 0.5 * (w.z_min + w.z_max); }
 
 // Re-projects a landmark's extent onto its current plane line, covering the given points.
@@ -187,8 +193,6 @@ bool WallMap::isSeenOver(uint32_t id) const {
   // The back of a free-standing cabinet or partition seen over from the other side: a surface
   // facing away, at most kMaxSlab behind, with no face of another wall between the two (a low
   // cabinet in the next room stands in front of that room's face of the wall).
-  constexpr double kMaxSlab = 1.0;    // [m]
-  constexpr double kTopMargin = 0.5;  // [m]
   // Other landmarks behind the face and overlapping it along the axis, with their depth: the
   // candidates for a face between the landmark and a back, gathered once for all surfaces.
   std::vector<std::pair<const WallLandmark*, double>> behind;
@@ -233,9 +237,6 @@ bool WallMap::standsBeforeATallerWall(uint32_t id) const {
   const auto [l0, l1] = extentOn(axis, lm);
   const double max_dist = 0.5 * config_.max_plane_distance;
   const double min_cos = std::cos(config_.max_normal_angle_deg * M_PI / 180.0);
-  // The same bounds as a surface seen over in front of a wall (isSeenOver()).
-  constexpr double kMaxDepth = 1.0;   // [m]
-  constexpr double kTopMargin = 0.5;  // [m]
   return std::any_of(landmarks_.begin(), landmarks_.end(), [&](const auto& entry) {
     const WallLandmark& w = entry.second;
     if (entry.first == id || w.normal.dot(lm.normal) < min_cos ||
@@ -244,7 +245,7 @@ bool WallMap::standsBeforeATallerWall(uint32_t id) const {
     }
     // How far the landmark stands in front of w's face.
     const double gap = planeDistance(w.normal, w.d, lm.midpoint(), midHeight(lm));
-    if (gap <= max_dist || gap > kMaxDepth) return false;
+    if (gap <= max_dist || gap > kMaxSlab) return false;
     const auto [w0, w1] = extentOn(axis, w);
     return std::min(l1, w1) - std::max(l0, w0) >= 0.5 * (l1 - l0);
   });
