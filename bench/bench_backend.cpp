@@ -20,7 +20,7 @@ struct Args {
   int walls = 300;
   int observations = 8;
   int threads = 1;  // Ceres threads (the live backend node leaves the other core to odometry)
-  std::string trust_region = tacs::BackendConfig().trust_region;  // the shipped default
+  tacs::TrustRegion trust_region = tacs::BackendConfig().trust_region;  // the shipped default
 };
 
 Args parse(int argc, char** argv) {
@@ -28,7 +28,12 @@ Args parse(int argc, char** argv) {
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string k = argv[i];
     if (k == "--trust-region") {
-      a.trust_region = argv[i + 1];
+      const std::string name = argv[i + 1];
+      if (name != "dogleg" && name != "levenberg_marquardt") {
+        throw std::invalid_argument("--trust-region: " + tacs::enumChoices<tacs::TrustRegion>());
+      }
+      a.trust_region =
+          name == "dogleg" ? tacs::TrustRegion::kDogleg : tacs::TrustRegion::kLevenbergMarquardt;
       continue;
     }
     const int v = std::stoi(argv[i + 1]);

@@ -227,7 +227,7 @@ Metrics runCosg(const std::vector<Keyframe>& kfs, const std::vector<Trigger>& tr
 
 Metrics runDistance(const std::vector<Keyframe>& kfs, double distance_m) {
   tacs::LoopClosureConfig config;
-  config.method = "distance";
+  config.method = tacs::LoopMethod::kDistance;
   config.distance.distance_threshold_m = distance_m;
   tacs::LoopDetector detector(config);
   Metrics m;

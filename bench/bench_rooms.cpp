@@ -47,7 +47,7 @@ struct Args {
 };
 
 struct MethodRun {
-  std::string method;
+  tacs::RoomMethod method = tacs::RoomMethod::kTacs;
   std::vector<tacs::RoomNode> rooms;
   std::vector<double> ms;
 };
@@ -112,8 +112,8 @@ std::vector<std::vector<tacs::RoomNode>> runWorld(const std::string& path, const
   const tacs::WallExtractor extractor{args.config.walls.extraction};
   tacs::WallMap walls(args.config.walls.association);
   std::vector<MethodRun> runs(2);
-  runs[0].method = "tacs";
-  runs[1].method = "voxel";
+  runs[0].method = tacs::RoomMethod::kTacs;
+  runs[1].method = tacs::RoomMethod::kVoxel;
   std::vector<tacs::RoomSegmenter> segmenters;
   for (const auto& run : runs) {
     tacs::RoomsConfig config = args.config.rooms;
@@ -165,7 +165,7 @@ std::vector<std::vector<tacs::RoomNode>> runWorld(const std::string& path, const
     std::printf(
         "| %-17s | %-5s | %4u | %2zu / %2zu | %4.2f | %4.2f | %4.2f | %4.2f | %4d | %5d | %6.2f | "
         "%6.1f |\n",
-        world.name.c_str(), runs[m].method.c_str(), keyframes, metrics.estimated,
+        world.name.c_str(), tacs::enumName(runs[m].method), keyframes, metrics.estimated,
         metrics.ground_truth, metrics.precision, metrics.recall, metrics.f1, metrics.mean_dice,
         over, under, mean, max);
     if (world.name == "open_lobby") {
@@ -173,19 +173,20 @@ std::vector<std::vector<tacs::RoomNode>> runWorld(const std::string& path, const
       lobbyChecks(runs[m].rooms, &across, &drop);
       std::printf(
           "|   open_lobby check | %-5s | rooms across the half wall: %d, over the drop-off: %d |\n",
-          runs[m].method.c_str(), across, drop);
+          tacs::enumName(runs[m].method), across, drop);
     }
     if (args.verbose) {
       for (const auto& s : metrics.rooms) {
         std::printf("|   %-15s | %-5s | gt room %-12s | matched %3d | Dice %.2f | best %.2f |\n",
-                    world.name.c_str(), runs[m].method.c_str(), s.id.c_str(), s.matched_room,
-                    s.dice, s.best_dice);
+                    world.name.c_str(), tacs::enumName(runs[m].method), s.id.c_str(),
+                    s.matched_room, s.dice, s.best_dice);
       }
       for (const auto& room : runs[m].rooms) {
         std::printf(
             "|   %-15s | %-5s | room %2u %-8s centre (%6.2f, %6.2f) points %zu kf %zu walls",
-            world.name.c_str(), runs[m].method.c_str(), room.id, tacs::roomKindName(room.kind),
-            room.center.x(), room.center.y(), room.free_space.size(), room.keyframe_ids.size());
+            world.name.c_str(), tacs::enumName(runs[m].method), room.id,
+            tacs::roomKindName(room.kind), room.center.x(), room.center.y(), room.free_space.size(),
+            room.keyframe_ids.size());
         for (uint32_t w : room.wall_ids) {
           const auto it = walls.landmarks().find(w);
           if (it == walls.landmarks().end()) continue;

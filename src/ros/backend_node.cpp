@@ -1,5 +1,6 @@
 #include "tacs_graphs/ros/backend_node.h"
 
+#include <tacs_graphs/Resync.h>
 #include <tacs_graphs/SceneGraph.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -11,10 +12,14 @@
 #include "tacs_graphs/ros/keyframe_input.h"
 #include "tacs_graphs/ros/message_conversion.h"
 #include "tacs_graphs/ros/params.h"
+#include "tacs_graphs/ros/resend_buffer.h"
 #include "tacs_graphs/ros/scene_graph_markers.h"
 
 namespace tacs {
 namespace {
+
+// Channels of the crash journal.
+enum JournalChannel : uint8_t { kKeyframeChannel, kWallsChannel, kRoomsChannel, kLoopsChannel };
 
 // A graph built from fewer scans than this share of the sensor's is saved with a warning.
 constexpr double kUnreliableDropRatio = 0.05;
@@ -43,6 +48,9 @@ BackendNode::BackendNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
     }
   }
 
+  journal_ = std::make_unique<NodeJournal>(pnh, "backend");
+  if (journal_->mustReplay()) replayJournal();
+
   graph_pub_ = nh.advertise<tacs_graphs::SceneGraph>("/tacs/scene_graph", 1, /*latch=*/true);
   marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("/tacs/markers", 1, /*latch=*/true);
   map_pub_ = nh.advertise<sensor_msgs::PointCloud2>("/tacs/map_points", 1, /*latch=*/true);
@@ -60,7 +68,38 @@ BackendNode::BackendNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
       nh.createTimer(ros::Duration(boundedParam(pnh, "map_publish_period_s", 5.0, 0.0, false)),
                      &BackendNode::publishMap, this);
   if (session_->keyframeCount() > 0) update();
+  if (journal_->mustReplay()) {
+    resync_from_ = session_->firstIncompleteKeyframe();
+    resync_pub_ = requestResync(nh, "backend", *resync_from_);
+  }
   ROS_INFO_STREAM("Backend ready; products go to " << output_dir_);
+}
+
+void BackendNode::replayJournal() {
+  journal_->replay([this](uint8_t channel, const std::vector<uint8_t>& bytes) {
+    switch (channel) {
+      case kKeyframeChannel:
+        keyframeCallback(MessageJournal::deserialize<tacs_graphs::Keyframe>(bytes));
+        break;
+      case kWallsChannel:
+        wallsCallback(MessageJournal::deserialize<tacs_graphs::WallObservations>(bytes));
+        break;
+      case kRoomsChannel:
+        roomsCallback(MessageJournal::deserialize<tacs_graphs::RoomObservations>(bytes));
+        break;
+      case kLoopsChannel:
+        loopCallback(MessageJournal::deserialize<tacs_graphs::LoopClosure>(bytes));
+        break;
+      default:
+        warnings_.warn("journal", "record of an unknown channel skipped");
+    }
+  });
+  if (session_->keyframeCount() > 0) session_->optimize();
+  const std::vector<uint32_t> missing = session_->missingKeyframes();
+  ROS_WARN_STREAM("backend: recovered " << session_->keyframeCount() << " keyframes (newest "
+                                        << session_->newestKeyframe() << "), "
+                                        << session_->roomCount() << " rooms; " << missing.size()
+                                        << " keyframe id(s) never received");
 }
 
 void BackendNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg) {
@@ -70,7 +109,9 @@ void BackendNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg) {
     return;
   }
   // The odometry numbers its keyframes one by one: a jump is keyframes lost on the way.
-  if (session_->keyframeCount() > 0 && kf.id > session_->newestKeyframe() + 1) {
+  // After a restart the keyframes of the downtime come later, resent (the Resync).
+  const bool resend_due = resync_from_ && kf.id > *resync_from_;
+  if (session_->keyframeCount() > 0 && kf.id > session_->newestKeyframe() + 1 && !resend_due) {
     ROS_WARN_STREAM("keyframe: " << kf.id - session_->newestKeyframe() - 1
                                  << " keyframe(s) before id " << kf.id
                                  << " never arrived (a full queue on /tacs/keyframe or an "
@@ -79,9 +120,10 @@ void BackendNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg) {
   const auto outcome =
       session_->addKeyframe(kf.id, kf.stamp, kf.T_odom_base, kf.information, kf.cloud);
   if (outcome == BackendSession::Outcome::kDuplicate) {
-    warnings_.warn("keyframe", "keyframe id already in the graph, skipped");
+    warnings_.warn("keyframe", "keyframe id already in the graph (resent), skipped");
     return;
   }
+  journal_->record(kKeyframeChannel, *msg);
   session_->noteScanInput({msg->scans_received, msg->scans_missing});
   latest_stamp_ = std::max(latest_stamp_, kf.stamp);
   map_dirty_ = true;
@@ -106,6 +148,9 @@ void BackendNode::wallsCallback(const tacs_graphs::WallObservations::ConstPtr& m
   walls.walls = valid(msg->walls);
   walls.seen_over = valid(msg->seen_over);
   const auto outcome = session_->addWalls(msg->keyframe_id, walls);
+  if (outcome == BackendSession::Outcome::kAdded || outcome == BackendSession::Outcome::kBuffered) {
+    journal_->record(kWallsChannel, *msg);
+  }
   if (outcome == BackendSession::Outcome::kDropped) {
     warnings_.warn("wall observations", "walls of a keyframe that never arrived, dropped");
   } else if (outcome == BackendSession::Outcome::kAdded && !walls.walls.empty()) {
@@ -114,7 +159,13 @@ void BackendNode::wallsCallback(const tacs_graphs::WallObservations::ConstPtr& m
 }
 
 void BackendNode::roomsCallback(const tacs_graphs::RoomObservations::ConstPtr& msg) {
+  journal_->record(kRoomsChannel, *msg);
   // Rooms arrive associated (room merging runs in room_segmentation) with the backend's wall ids.
+  if (msg->complete_set) {
+    std::set<uint32_t> ids;
+    for (const auto& r : msg->rooms) ids.insert(r.room_id);
+    changed_ = session_->retainRooms(ids) > 0 || changed_;
+  }
   for (const auto& r : msg->rooms) {
     // Rooms merged into this one leave the graph even if this one cannot be stored yet.
     for (uint32_t absorbed : r.absorbed_room_ids) session_->removeRoom(absorbed);
@@ -134,7 +185,10 @@ void BackendNode::loopCallback(const tacs_graphs::LoopClosure::ConstPtr& msg) {
     warnings_.warn("loop closure", "non-finite relative pose or information, skipped");
     return;
   }
-  if (session_->addLoop(edge, information) == BackendSession::Outcome::kAdded) changed_ = true;
+  const auto outcome = session_->addLoop(edge, information);
+  if (outcome == BackendSession::Outcome::kDuplicate) return;  // republished after a restart
+  journal_->record(kLoopsChannel, *msg);
+  if (outcome == BackendSession::Outcome::kAdded) changed_ = true;
 }
 
 void BackendNode::publishIfChanged() {

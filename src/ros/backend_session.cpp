@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <fstream>
 #include <stdexcept>
 
 #include "tacs_graphs/common/file_io.h"
+#include "tacs_graphs/common/trajectory_io.h"
 
 namespace tacs {
 namespace {
@@ -115,6 +117,8 @@ BackendSession::Outcome BackendSession::addKeyframe(uint32_t id, double stamp,
   backend_.addKeyframe(id, stamp, T_odom_base, information);
   clouds_.add(id, cloud, backend_);
   newest_keyframe_ = std::max(newest_keyframe_, id);
+  keyframe_ids_.insert(id);
+  if (walls_taken_.count(id) == 0) keyframes_without_walls_.insert(id);
   const nlohmann::json entry = {{"id", id},
                                 {"stamp", stamp},
                                 {"odom_pose", poseToJson(T_odom_base)},
@@ -136,6 +140,8 @@ BackendSession::Outcome BackendSession::addWalls(uint32_t keyframe_id, const Key
                              walls.seen_over.end());
     return Outcome::kBuffered;
   }
+  if (!walls_taken_.insert(keyframe_id).second) return Outcome::kDuplicate;
+  keyframes_without_walls_.erase(keyframe_id);
   if (walls.walls.empty() && walls.seen_over.empty()) return Outcome::kAdded;
   backend_.addWallObservations(keyframe_id, walls.walls, walls.seen_over);
   nlohmann::json entry = {{"keyframe", keyframe_id}, {"walls", nlohmann::json::array()}};
@@ -153,6 +159,7 @@ BackendSession::Outcome BackendSession::addLoop(const LoopEdge& edge, const Matr
     pending_loops_.emplace_back(edge, information);
     return Outcome::kBuffered;
   }
+  if (!loops_taken_.emplace(edge.from, edge.to).second) return Outcome::kDuplicate;
   backend_.addLoopClosure(edge.from, edge.to, edge.relativePose(), information, edge.score);
   const nlohmann::json entry = {{"from", edge.from},
                                 {"to", edge.to},
@@ -192,18 +199,45 @@ size_t BackendSession::pendingCount() const {
 void BackendSession::removeRoom(uint32_t id) {
   backend_.removeRoom(id);
   journal_rooms_.erase(id);
+  wall_to_wall_.erase(id);
+}
+
+size_t BackendSession::retainRooms(const std::set<uint32_t>& ids) {
+  std::vector<uint32_t> gone;
+  for (const auto& [id, room] : journal_rooms_) {
+    if (ids.count(id) == 0) gone.push_back(id);
+  }
+  for (uint32_t id : gone) removeRoom(id);
+  return gone.size();
+}
+
+uint32_t BackendSession::firstIncompleteKeyframe() const {
+  for (uint32_t id : keyframes_without_walls_) {
+    // Walls older than the pending window would be dropped anyway.
+    if (id + options_.max_pending_keyframes >= newest_keyframe_) return id;
+  }
+  return keyframe_ids_.empty() ? 0 : newest_keyframe_ + 1;
+}
+
+std::vector<uint32_t> BackendSession::missingKeyframes() const {
+  std::vector<uint32_t> missing;
+  for (uint32_t id = 0; id < newest_keyframe_; ++id) {
+    if (keyframe_ids_.count(id) == 0) missing.push_back(id);
+  }
+  return missing;
 }
 
 bool BackendSession::setRoom(const MappedRoom& room,
                              const std::vector<std::pair<uint32_t, uint32_t>>& wall_to_wall) {
   if (!backend_.setRoom(room)) return false;
-  for (const auto& [mapped, observed] : wall_to_wall) backend_.addWallToWall(mapped, observed);
+  std::set<std::pair<uint32_t, uint32_t>>& pairs = wall_to_wall_[room.id];
+  for (const auto& pair : wall_to_wall) {
+    // An edge sent again (rooms republished after a restart) is one factor, not two.
+    if (pairs.insert(pair).second) backend_.addWallToWall(pair.first, pair.second);
+  }
   nlohmann::json entry = roomToJson(room);
-  nlohmann::json pairs = journal_rooms_.count(room.id) > 0
-                             ? journal_rooms_[room.id].at("wall_to_wall")
-                             : nlohmann::json::array();
-  for (const auto& [mapped, observed] : wall_to_wall) pairs.push_back({mapped, observed});
-  entry["wall_to_wall"] = pairs;
+  entry["wall_to_wall"] = nlohmann::json::array();
+  for (const auto& [mapped, observed] : pairs) entry["wall_to_wall"].push_back({mapped, observed});
   journal_rooms_[room.id] = std::move(entry);
   return true;
 }
@@ -250,15 +284,41 @@ void BackendSession::noteScanInput(const ScanInput& input) {
   kept.scans_missing = std::max(kept.scans_missing, input.scans_missing);
 }
 
+nlohmann::json BackendSession::runStatus(const std::string& status) const {
+  nlohmann::json j = {
+      {"format", "tacs_graphs/backend_run"},
+      {"status", status},
+      {"keyframes", keyframeCount()},
+      {"missing_keyframes", missingKeyframes()},
+      {"rooms", roomCount()},
+      {"files",
+       {"scene_graph.json", "trajectory_tum.txt", "backend_journal.json", "map.pcd", "map.bt"}}};
+  if (scan_input_) {
+    j["scans_received"] = scan_input_->scans_received;
+    j["scans_missing"] = scan_input_->scans_missing;
+  }
+  return j;
+}
+
 void BackendSession::save(const std::string& dir, const MapExportConfig& map_config) const {
   ensureDirectory(dir);
+  // run.json says "saving" until the last product is in: a save cut short (a SIGKILL) never
+  // leaves a set that looks complete, nor an older run's map.bt beside the new graph.
+  writeFileAtomically(dir + "/run.json", runStatus("saving").dump(2) + "\n");
+  std::remove((dir + "/map.bt").c_str());
   const SceneGraph graph = sceneGraph();
   // Fastest first: a shutdown cut short (roslaunch escalates to SIGTERM after its SIGINT
   // timeout) still leaves the graph, the journal and the cloud; the OctoMap ray casting comes last.
   graph.save(dir + "/scene_graph.json");
+  Trajectory keyframes;
+  for (const auto& [id, kf] : graph.keyframes) keyframes.push_back({kf.stamp, kf.pose()});
+  std::sort(keyframes.begin(), keyframes.end(),
+            [](const StampedPose& a, const StampedPose& b) { return a.stamp < b.stamp; });
+  writeTum(dir + "/trajectory_tum.txt", keyframes);
   writeFileAtomically(dir + "/backend_journal.json", journalText());
   writePcdAtomically(dir + "/map.pcd", mapCloud(map_config.cloud_voxel_m));
   writeOctomap(dir + "/map.bt", graph, clouds_.clouds(), map_config);
+  writeFileAtomically(dir + "/run.json", runStatus("complete").dump(2) + "\n");
 }
 
 size_t BackendSession::recover(const std::string& dir) {

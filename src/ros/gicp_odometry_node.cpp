@@ -63,6 +63,14 @@ GicpOdometryNode::GicpOdometryNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
   const int queue_size = static_cast<int>(boundedParam(pnh, "points_queue_size", 30, 1, true));
   cloud_sub_ = nh.subscribe(points_topic, queue_size, &GicpOdometryNode::cloudCallback, this,
                             ros::TransportHints().tcpNoDelay());
+  // A keyframe cloud is 0.1-0.5 MB: 100 keyframes cover a restart of a few seconds at 10 Hz.
+  sent_keyframes_ = std::make_unique<ResendBuffer<tacs_graphs::Keyframe>>(
+      static_cast<size_t>(boundedParam(pnh, "resend_capacity", 100, 0, true)), "keyframes");
+  resync_sub_ = nh.subscribe("/tacs/resync", 10, &GicpOdometryNode::resyncCallback, this);
+}
+
+void GicpOdometryNode::resyncCallback(const tacs_graphs::Resync::ConstPtr& msg) {
+  sent_keyframes_->answer(*msg, keyframe_pub_);
 }
 
 Pose3 GicpOdometryNode::sensorExtrinsic(const std::string& sensor_frame) {
@@ -199,6 +207,7 @@ void GicpOdometryNode::publish(const OdometryResult& result,
   msg.scans_received = static_cast<uint32_t>(overload_.arrivedTotal());
   msg.scans_missing = static_cast<uint32_t>(scan_gaps_.missingTotal());
   keyframe_pub_.publish(msg);
+  sent_keyframes_->keep(msg.id, msg);
 }
 
 }  // namespace tacs

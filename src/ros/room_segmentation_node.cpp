@@ -8,8 +8,14 @@
 #include "tacs_graphs/ros/keyframe_input.h"
 #include "tacs_graphs/ros/message_conversion.h"
 #include "tacs_graphs/ros/params.h"
+#include "tacs_graphs/ros/resend_buffer.h"
 
 namespace tacs {
+namespace {
+
+enum JournalChannel : uint8_t { kGraphChannel, kKeyframeChannel };
+
+}  // namespace
 
 RoomSegmentationNode::RoomSegmentationNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
     : config_(loadPipelineConfigFromRos(nh, pnh.param<std::string>("config_ns", "/tacs"))) {
@@ -21,6 +27,8 @@ RoomSegmentationNode::RoomSegmentationNode(ros::NodeHandle& nh, ros::NodeHandle&
   options.repose_angle_deg =
       boundedParam(pnh, "repose_angle_deg", options.repose_angle_deg, 0.0, true);
   session_ = std::make_unique<RoomSegmentationSession>(config_, options);
+  journal_ = std::make_unique<NodeJournal>(pnh, "room_segmentation");
+  if (journal_->mustReplay()) replayJournal(nh);
 
   rooms_pub_ = nh.advertise<tacs_graphs::RoomObservations>("/tacs/room_observations", 100);
   const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
@@ -33,10 +41,46 @@ RoomSegmentationNode::RoomSegmentationNode(ros::NodeHandle& nh, ros::NodeHandle&
   }
   scene_graph_sub_ =
       nh.subscribe("/tacs/scene_graph", 10, &RoomSegmentationNode::sceneGraphCallback, this, hints);
-  ROS_INFO_STREAM("Room segmentation (" << config_.rooms.method << ") ready");
+  resync_sub_ = nh.subscribe("/tacs/resync", 10, &RoomSegmentationNode::resyncCallback, this);
+  ROS_INFO_STREAM("Room segmentation (" << enumName(config_.rooms.method) << ") ready");
+}
+
+void RoomSegmentationNode::replayJournal(ros::NodeHandle& nh) {
+  // Inputs only: segmenting waits for the backend's scene graph (latched, it comes at once).
+  journal_->replay([this](uint8_t channel, const std::vector<uint8_t>& bytes) {
+    if (channel == kGraphChannel) {
+      graphCallback(MessageJournal::deserialize<tacs_graphs::TraversableGraph>(bytes));
+    } else if (channel == kKeyframeChannel) {
+      keyframeCallback(MessageJournal::deserialize<tacs_graphs::Keyframe>(bytes));
+    }
+  });
+  complete_set_due_ = true;
+  resync_pub_ = requestResync(nh, "room_segmentation", static_cast<uint32_t>(newest_input_id_ + 1));
+}
+
+void RoomSegmentationNode::resyncCallback(const tacs_graphs::Resync::ConstPtr& msg) {
+  if (msg->requester == "room_segmentation") return;
+  publishCompleteSet();
+}
+
+void RoomSegmentationNode::publishCompleteSet() {
+  tacs_graphs::RoomObservations msg;
+  msg.header.stamp = ros::Time::now();
+  msg.header.frame_id = config_.frames.map_frame;
+  msg.complete_set = true;
+  RoomAssociation as_known;  // created: not a re-detection, no new wall-to-wall edges
+  for (const auto& [id, room] : session_->segmenter().rooms()) {
+    msg.rooms.push_back(toRoomObservationMsg(room, as_known));
+  }
+  rooms_pub_.publish(msg);
+  ROS_WARN_STREAM("room_segmentation: sent all " << msg.rooms.size() << " rooms again");
 }
 
 void RoomSegmentationNode::graphCallback(const tacs_graphs::TraversableGraph::ConstPtr& msg) {
+  // One publisher sends graphs in id order: an older id is one sent again for another node.
+  if (static_cast<int64_t>(msg->keyframe_id) <= newest_input_id_) return;
+  newest_input_id_ = msg->keyframe_id;
+  journal_->record(kGraphChannel, *msg);
   const Pose3 T_odom_base = fromPoseMsg(msg->odom_pose);
   if (!T_odom_base.matrix().allFinite()) {
     warnings_.warn("traversable graph", "non-finite odometry pose, skipped");
@@ -44,17 +88,20 @@ void RoomSegmentationNode::graphCallback(const tacs_graphs::TraversableGraph::Co
   }
   session_->addGraph(msg->keyframe_id, msg->header.stamp.toSec(), T_odom_base,
                      fromTraversableGraphMsg(*msg));
-  processReady();
+  if (!journal_->replaying()) processReady();
 }
 
 void RoomSegmentationNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg) {
+  if (static_cast<int64_t>(msg->id) <= newest_input_id_) return;  // resent for another node
+  newest_input_id_ = msg->id;
+  journal_->record(kKeyframeChannel, *msg);
   const KeyframeInput kf = fromKeyframeMsg(*msg);
   if (!kf.ok) {
     warnings_.warn("keyframe", WarnOnce::reasonKey(kf.error), kf.error + ", skipped");
     return;
   }
   session_->addCloud(kf.id, kf.stamp, kf.T_odom_base, kf.cloud);
-  processReady();
+  if (!journal_->replaying()) processReady();
 }
 
 void RoomSegmentationNode::sceneGraphCallback(const tacs_graphs::SceneGraph::ConstPtr& msg) {
@@ -62,6 +109,10 @@ void RoomSegmentationNode::sceneGraphCallback(const tacs_graphs::SceneGraph::Con
   for (const auto& w : msg->walls) observations[w.id] = w.observation_count;
   session_->setSceneGraph(fromSceneGraphMsg(*msg), observations);
   processReady();
+  if (complete_set_due_) {
+    complete_set_due_ = false;
+    publishCompleteSet();
+  }
 }
 
 void RoomSegmentationNode::processReady() {

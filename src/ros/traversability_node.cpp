@@ -15,13 +15,19 @@ namespace tacs {
 
 TraversabilityNode::TraversabilityNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
     : config_(loadPipelineConfigFromRos(nh, pnh.param<std::string>("config_ns", "/tacs"))),
-      mapper_(config_.traversability) {
+      mapper_(config_.traversability),
+      sent_(static_cast<size_t>(boundedParam(pnh, "resend_capacity", 100, 0, true)), "graphs") {
   graph_pub_ = nh.advertise<tacs_graphs::TraversableGraph>("/tacs/traversable_graph", 100);
   ground_pub_ = nh.advertise<sensor_msgs::PointCloud2>("/tacs/ground_points", 5);
   obstacle_pub_ = nh.advertise<sensor_msgs::PointCloud2>("/tacs/obstacle_points", 5);
   marker_pub_ = nh.advertise<visualization_msgs::Marker>("/tacs/traversable_markers", 100);
   keyframe_sub_ = nh.subscribe("/tacs/keyframe", 1000, &TraversabilityNode::keyframeCallback, this,
                                ros::TransportHints().tcpNoDelay());
+  resync_sub_ = nh.subscribe("/tacs/resync", 10, &TraversabilityNode::resyncCallback, this);
+}
+
+void TraversabilityNode::resyncCallback(const tacs_graphs::Resync::ConstPtr& msg) {
+  sent_.answer(*msg, graph_pub_);
 }
 
 void TraversabilityNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg) {
@@ -30,6 +36,9 @@ void TraversabilityNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr&
     warnings_.warn("keyframe", WarnOnce::reasonKey(kf.error), kf.error + ", skipped");
     return;
   }
+  // A keyframe resent for a restarted node: its graph goes out again from sent_ on the Resync.
+  if (static_cast<int64_t>(kf.id) <= newest_id_) return;
+  newest_id_ = kf.id;
   // A base off the floor (hand-held): the terrain is read in the levelled floor frame under it
   // (docs/DESIGN.md, frames) and its graph handed on in the base frame, as the pipeline does.
   Pose3 T_base_ground = Pose3::Identity();
@@ -46,8 +55,10 @@ void TraversabilityNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr&
   ++processed_;
   if (levelled) result.graph = result.graph.transformed(T_base_ground);
   const std::string& odom = config_.frames.odom_frame;
-  graph_pub_.publish(toTraversableGraphMsg(result.graph, kf.id, kf.T_odom_base,
-                                           config_.frames.base_frame, kf.stamp));
+  const tacs_graphs::TraversableGraph graph_msg = toTraversableGraphMsg(
+      result.graph, kf.id, kf.T_odom_base, config_.frames.base_frame, kf.stamp);
+  graph_pub_.publish(graph_msg);
+  sent_.keep(kf.id, graph_msg);
   const Eigen::Matrix4f T = (kf.T_odom_base * T_base_ground).matrix().cast<float>();
   if (ground_pub_.getNumSubscribers() > 0 && result.ground) {
     PointCloud ground;

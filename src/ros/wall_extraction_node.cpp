@@ -11,10 +11,16 @@ namespace tacs {
 
 WallExtractionNode::WallExtractionNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
     : config_(loadPipelineConfigFromRos(nh, pnh.param<std::string>("config_ns", "/tacs"))),
-      extractor_(config_.walls.extraction) {
+      extractor_(config_.walls.extraction),
+      sent_(static_cast<size_t>(boundedParam(pnh, "resend_capacity", 100, 0, true)), "walls") {
   walls_pub_ = nh.advertise<tacs_graphs::WallObservations>("/tacs/wall_observations", 100);
   keyframe_sub_ = nh.subscribe("/tacs/keyframe", 1000, &WallExtractionNode::keyframeCallback, this,
                                ros::TransportHints().tcpNoDelay());
+  resync_sub_ = nh.subscribe("/tacs/resync", 10, &WallExtractionNode::resyncCallback, this);
+}
+
+void WallExtractionNode::resyncCallback(const tacs_graphs::Resync::ConstPtr& msg) {
+  sent_.answer(*msg, walls_pub_);
 }
 
 void WallExtractionNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg) {
@@ -23,6 +29,9 @@ void WallExtractionNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr&
     warnings_.warn("keyframe", WarnOnce::reasonKey(kf.error), kf.error + ", skipped");
     return;
   }
+  // A keyframe resent for a restarted node: its walls go out again from sent_ on the Resync.
+  if (static_cast<int64_t>(kf.id) <= newest_id_) return;
+  newest_id_ = kf.id;
   // Seen from the sensor: the low-surface and seen-over tests measure rays from there. A base off
   // the floor (hand-held) is read in the levelled floor frame, as the pipeline does.
   WallExtractionResult result;
@@ -45,6 +54,7 @@ void WallExtractionNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr&
   for (const WallSegment& w : result.seen_over) out.seen_over.push_back(toWallObservationMsg(w));
   // Published even when empty: the backend then knows this keyframe's walls are complete.
   walls_pub_.publish(out);
+  sent_.keep(kf.id, out);
 }
 
 }  // namespace tacs

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 namespace tacs {
 namespace {
@@ -112,6 +113,47 @@ TEST(BackendSession, MappedRoomsBecomeRoomNodesOfTheOptimisedGraph) {
   EXPECT_EQ(session.journal().at("rooms").size(), 1u);
 }
 
+// After a restart the others send again what they had sent (tacs_graphs/Resync): nothing of it
+// may count twice.
+TEST(BackendSession, WhatIsSentAgainCountsOnce) {
+  BackendSession session{PipelineConfig(), BackendSessionOptions()};
+  session.addKeyframe(0, 1.0, Pose3::Identity(), Matrix6d::Zero(), nullptr);
+  session.addKeyframe(1, 2.0, poseFromXyzRpy(0.3, 0, 0, 0, 0, 0), information(), nullptr);
+  EXPECT_EQ(session.firstIncompleteKeyframe(), 0u);  // no walls of keyframe 0 yet
+  EXPECT_EQ(session.addWalls(0, {facingWalls(), {}}), BackendSession::Outcome::kAdded);
+  EXPECT_EQ(session.addWalls(0, {facingWalls(), {}}), BackendSession::Outcome::kDuplicate);
+  EXPECT_EQ(session.wallObservationCounts().begin()->second, 1u);
+  EXPECT_EQ(session.addWalls(1, {}), BackendSession::Outcome::kAdded);  // none is an answer too
+  EXPECT_EQ(session.firstIncompleteKeyframe(), 2u);
+
+  LoopEdge loop;
+  loop.from = 0;
+  loop.to = 1;
+  loop.position = Eigen::Vector3d(0.3, 0.0, 0.0);
+  EXPECT_EQ(session.addLoop(loop, information()), BackendSession::Outcome::kAdded);
+  EXPECT_EQ(session.addLoop(loop, information()), BackendSession::Outcome::kDuplicate);
+  EXPECT_EQ(session.sceneGraph().loops.size(), 1u);
+
+  const SceneGraph g = session.sceneGraph();
+  const std::vector<uint32_t> ids = {g.walls.begin()->first, std::next(g.walls.begin())->first};
+  MappedRoom room = corridorBetween(g, 3);
+  ASSERT_TRUE(session.setRoom(room, {{ids[0], ids[1]}}));
+  ASSERT_TRUE(session.setRoom(room, {{ids[0], ids[1]}}));
+  EXPECT_EQ(session.journal().at("rooms").at(0).at("wall_to_wall").size(), 1u);
+  // The room segmenter's complete set without room 3: it is gone.
+  EXPECT_EQ(session.retainRooms({4}), 1u);
+  EXPECT_EQ(session.roomCount(), 0u);
+}
+
+TEST(BackendSession, KeyframeIdsThatNeverArrivedAreReported) {
+  BackendSession session{PipelineConfig(), BackendSessionOptions()};
+  for (uint32_t id : {0u, 1u, 4u}) {
+    session.addKeyframe(id, 1.0 + id, poseFromXyzRpy(0.3 * id, 0, 0, 0, 0, 0),
+                        id == 0 ? Matrix6d::Zero() : information(), nullptr);
+  }
+  EXPECT_EQ(session.missingKeyframes(), (std::vector<uint32_t>{2, 3}));
+}
+
 TEST(BackendSession, SaveWritesProductsAndRecoverRestoresTheGraph) {
   const std::string dir =
       (std::filesystem::temp_directory_path() / "tacs_backend_session_test").string();
@@ -133,9 +175,13 @@ TEST(BackendSession, SaveWritesProductsAndRecoverRestoresTheGraph) {
     session.save(dir, map_config);
     before = session.sceneGraph();
   }
-  for (const char* name : {"scene_graph.json", "map.pcd", "map.bt", "backend_journal.json"}) {
+  for (const char* name : {"scene_graph.json", "trajectory_tum.txt", "map.pcd", "map.bt",
+                           "backend_journal.json", "run.json"}) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/" + name)) << name;
   }
+  const nlohmann::json run = nlohmann::json::parse(std::ifstream(dir + "/run.json"));
+  EXPECT_EQ(run.at("status"), "complete");
+  EXPECT_EQ(run.at("keyframes"), 4);
   BackendSession restarted{config, BackendSessionOptions()};
   EXPECT_EQ(restarted.recover(dir), 4u);
   const SceneGraph after = restarted.sceneGraph();

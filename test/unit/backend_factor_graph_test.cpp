@@ -55,7 +55,7 @@ void addOdometry(FactorGraph* g, const std::vector<Pose3>& odom) {
 }
 
 /// Both trust-region strategies remove the drift of a closed rectangle loop.
-class FactorGraphTrustRegion : public ::testing::TestWithParam<const char*> {};
+class FactorGraphTrustRegion : public ::testing::TestWithParam<TrustRegion> {};
 
 TEST_P(FactorGraphTrustRegion, LoopClosureRemovesDrift) {
   const auto truth = rectangleLoop();
@@ -77,12 +77,22 @@ TEST_P(FactorGraphTrustRegion, LoopClosureRemovesDrift) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Strategies, FactorGraphTrustRegion,
-                         ::testing::Values("levenberg_marquardt", "dogleg"));
+                         ::testing::Values(TrustRegion::kLevenbergMarquardt, TrustRegion::kDogleg));
 
 TEST(FactorGraph, UnknownTrustRegionIsAConfigError) {
   BackendConfig config;
-  config.trust_region = "gauss_newton";
-  EXPECT_THROW(config.validate(), ConfigError);
+  std::vector<std::string> unknown;
+  try {
+    configFromJson(nlohmann::json{{"trust_region", "gauss_newton"}}, "t.yaml", &config, &unknown);
+    FAIL() << "accepted gauss_newton";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "t.yaml: trust_region: must be levenberg_marquardt or dogleg (got \"gauss_newton\")");
+  }
+  configFromJson(nlohmann::json{{"trust_region", "levenberg_marquardt"}}, "t.yaml", &config,
+                 &unknown);
+  EXPECT_EQ(config.trust_region, TrustRegion::kLevenbergMarquardt);
+  EXPECT_EQ(configToJson(config).at("trust_region"), "levenberg_marquardt");
 }
 
 TEST(FactorGraph, WallObservationsCorrectHeadingDrift) {

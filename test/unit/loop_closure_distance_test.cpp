@@ -21,7 +21,7 @@ Pose3 outAndBack(uint32_t id) {
 TEST(LoopClosureDistance, CandidatesAreNearInXyAndFarBackAlongThePath) {
   const test::BoxRoom room;
   LoopClosureConfig config;
-  config.method = "distance";
+  config.method = LoopMethod::kDistance;
   LoopDetector detector(config);
   for (uint32_t id = 0; id <= 12; ++id) {
     test::addRoomKeyframe(&detector, room, id, outAndBack(id), outAndBack(id));
@@ -51,7 +51,7 @@ TEST(LoopClosureDistance, ReleasedCloudsAreNoCandidates) {
   };
   const test::BoxRoom room;
   LoopClosureConfig config;
-  config.method = "distance";
+  config.method = LoopMethod::kDistance;
   config.cloud_retention.place_radius_m = 0.6;
   config.cloud_retention.max_keyframes_per_place = 1;
   config.cloud_retention.min_age_keyframes = 2;
@@ -75,7 +75,7 @@ TEST(LoopClosureDistance, ReleasedCloudsAreNoCandidates) {
 TEST(LoopClosureDistance, WaitsMinEdgeIntervalAfterALoop) {
   const test::BoxRoom room;
   LoopClosureConfig config;
-  config.method = "distance";
+  config.method = LoopMethod::kDistance;
   config.distance.min_edge_interval_m = 3.0;
   LoopDetector detector(config);
   int loops = 0;

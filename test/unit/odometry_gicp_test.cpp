@@ -209,5 +209,37 @@ TEST(Gicp, AlignsTheRealHdl32ScanPair) {
   EXPECT_LT(rotationErrorDeg(r.T_target_source, truth), 0.5);
 }
 
+// parallel.h promises results bit-identical for any thread count: the covariances (parallelFor)
+// and the Gauss-Newton sums (parallelReduce) of a real scan pair at 1, 2 and 3 threads.
+TEST(Gicp, ResultsAreBitIdenticalForAnyThreadCount) {
+  TACS_DATA_SET_OR_SKIP(dir, "hdl32_scan_pair");
+  PointCloud target_raw, source_raw;
+  ASSERT_EQ(pcl::io::loadPCDFile(dir + "251370668.pcd", target_raw), 0);
+  ASSERT_EQ(pcl::io::loadPCDFile(dir + "251371071.pcd", source_raw), 0);
+  const PointCloud target = preprocess(target_raw, PreprocessConfig());
+  const PointCloud source = preprocess(source_raw, PreprocessConfig());
+  const auto run = [&](int threads) {
+    GicpConfig config;
+    config.num_threads = threads;
+    Gicp gicp(config);
+    gicp.setTarget(target);
+    gicp.setSource(source);
+    return std::make_pair(gicp.align(Pose3::Identity()), gicp.target()->covariances());
+  };
+  const auto [one, one_covariances] = run(1);
+  ASSERT_TRUE(one.converged);
+  for (int threads : {2, 3}) {
+    const auto [many, many_covariances] = run(threads);
+    EXPECT_EQ(many.iterations, one.iterations) << threads;
+    EXPECT_TRUE(many.T_target_source.matrix() == one.T_target_source.matrix()) << threads;
+    EXPECT_TRUE(many.information == one.information) << threads;
+    EXPECT_EQ(many.fitness, one.fitness) << threads;
+    ASSERT_EQ(many_covariances.size(), one_covariances.size());
+    for (size_t i = 0; i < one_covariances.size(); ++i) {
+      ASSERT_TRUE(many_covariances[i] == one_covariances[i]) << "point " << i << ", " << threads;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace tacs

@@ -51,8 +51,8 @@ TEST(Pipeline, TracksTheSmokeWorldAndMapsItsWalls) {
 
 TEST(Pipeline, OdometryAndWallsOnlyWhenRoomsAndLoopsAreOff) {
   PipelineConfig config;
-  config.rooms.method = "none";
-  config.loop_closure.method = "none";
+  config.rooms.method = RoomMethod::kNone;
+  config.loop_closure.method = LoopMethod::kNone;
   SmokeRun run(8.0, config);
   EXPECT_GT(run.pipeline.stats().keyframes, 10u);
   EXPECT_GE(run.pipeline.sceneGraph().walls.size(), 4u);

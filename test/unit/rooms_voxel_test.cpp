@@ -5,6 +5,7 @@
 #include "common/room_layout.h"
 #include "common/synthetic_walls.h"
 #include "tacs_graphs/common/config.h"
+#include "tacs_graphs/pipeline/pipeline_config.h"
 #include "tacs_graphs/rooms/room_segmenter.h"
 #include "tacs_graphs/rooms/voxel_free_space.h"
 
@@ -65,7 +66,7 @@ TEST(RoomsVoxel, WiderClearanceNeverCutsALargerDoor) {
 
 TEST(RoomsVoxel, SegmenterFindsBothRooms) {
   RoomsConfig config;
-  config.method = "voxel";
+  config.method = RoomMethod::kVoxel;
   config.voxel.update_every_keyframes = 2;
   RoomSegmenter seg(config, DominantAxesConfig{}, poseFromXyzRpy(0, 0, kSensor.z(), 0, 0, 0));
   const test::FloorPlan plan = twoRoomsPlan();
@@ -92,7 +93,7 @@ TEST(RoomsVoxel, SegmenterFindsBothRooms) {
 
 TEST(RoomsVoxel, VoxelMethodWithoutCloudReportsIt) {
   RoomsConfig config;
-  config.method = "voxel";
+  config.method = RoomMethod::kVoxel;
   RoomSegmenter seg(config);
   const TraversableMap unused{TraversabilityConfig{}};
   const auto r = seg.processKeyframe(0, Pose3::Identity(), unused, WallMap{});
@@ -101,15 +102,19 @@ TEST(RoomsVoxel, VoxelMethodWithoutCloudReportsIt) {
 }
 
 TEST(RoomsVoxel, ConfigNamesTheBadField) {
-  RoomsConfig config;
-  config.method = "octree";
+  PipelineConfig pipeline;
+  std::vector<std::string> unknown;
   try {
-    config.validate();
+    configFromJson(nlohmann::json{{"rooms", {{"method", "octree"}}}}, "t.yaml", &pipeline,
+                   &unknown);
     FAIL() << "accepted an unknown method";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("rooms.method"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("t.yaml: rooms.method: must be tacs, voxel or none"),
+              std::string::npos)
+        << e.what();
   }
-  config.method = "voxel";
+  RoomsConfig config;
+  config.method = RoomMethod::kVoxel;
   config.voxel.band_max = 0.1;
   EXPECT_THROW(config.validate(), ConfigError);
 }

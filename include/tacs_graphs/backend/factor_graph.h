@@ -11,9 +11,25 @@
 #include <string>
 #include <vector>
 
+#include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/types.h"
 
+namespace ceres {
+class Manifold;
+class Problem;
+}  // namespace ceres
+
 namespace tacs {
+
+/// backend.trust_region: Levenberg-Marquardt, or Powell's dogleg (on large pose graphs it often
+/// needs fewer iterations, see bench_backend --trust-region).
+enum class TrustRegion { kLevenbergMarquardt, kDogleg };
+template <>
+struct EnumNames<TrustRegion> {
+  static constexpr std::array<std::pair<TrustRegion, const char*>, 2> kNames{
+      {{TrustRegion::kLevenbergMarquardt, "levenberg_marquardt"},
+       {TrustRegion::kDogleg, "dogleg"}}};
+};
 
 struct BackendConfig {
   double wall_sigma_normal = 0.05;       // keyframe-wall factor, normal components [-]
@@ -25,9 +41,7 @@ struct BackendConfig {
   double wall_merge_sigma_theta = 0.02;  // wall-to-wall edge, angle [rad]
   double wall_merge_sigma_d = 0.05;      // wall-to-wall edge, distance [m]
   int max_iterations = 20;               // trust-region iterations per optimisation
-  // Trust-region strategy: "levenberg_marquardt" or "dogleg" (Powell's dogleg; on large pose
-  // graphs it often needs fewer iterations, see bench_backend --trust-region).
-  std::string trust_region = "dogleg";
+  TrustRegion trust_region = TrustRegion::kDogleg;
   int num_threads = 1;               // Ceres threads (the other core runs the front end)
   int optimize_every_keyframes = 1;  // optimise after this many new keyframes (and on each loop)
   // Roll and pitch of the first keyframe, which anchors the map: 0 holds them as measured; > 0
@@ -112,6 +126,11 @@ class FactorGraph {
   size_t roomCount() const { return rooms_.size(); }
 
  private:
+  // The steps of optimize(): parameter blocks and gauge, then the factors by layer.
+  void addKeyframeBlocks(ceres::Problem* problem, ceres::Manifold* quaternion);
+  void addPoseAndWallFactors(ceres::Problem* problem);
+  void addRoomFactors(ceres::Problem* problem);
+
   struct KeyframeState {
     std::array<double, 3> t;
     std::array<double, 4> q;  // x y z w

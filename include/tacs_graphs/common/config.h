@@ -10,11 +10,12 @@
 // back out, and reporting keys that no field claimed. Nested Configs are visited recursively.
 #pragma once
 
+#include <array>
 #include <nlohmann/json.hpp>
-
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace tacs {
@@ -30,6 +31,36 @@ class ConfigError : public std::runtime_error {
 /// Throws ConfigError("<field>: <reason>") unless `ok`. The helper Config::validate() uses.
 void requireConfig(bool ok, const std::string& field, const std::string& reason);
 
+/// The spellings of a mode enum read from a configuration, specialised next to each enum:
+///   template <> struct EnumNames<RoomMethod> {
+///     static constexpr std::array<std::pair<RoomMethod, const char*>, 3> kNames{{...}};
+///   };
+/// A Config field of that type is read from (and written as) one of the spellings; any other
+/// is a ConfigError listing them.
+template <class E>
+struct EnumNames;
+
+/// The spelling of `value` ("?" for a value without one).
+template <class E>
+const char* enumName(E value) {
+  for (const auto& [v, name] : EnumNames<E>::kNames) {
+    if (v == value) return name;
+  }
+  return "?";
+}
+
+/// "a, b or c": the spellings of E, for messages.
+template <class E>
+std::string enumChoices() {
+  std::string out;
+  const auto& names = EnumNames<E>::kNames;
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) out += i + 1 == names.size() ? " or " : ", ";
+    out += names[i].second;
+  }
+  return out;
+}
+
 namespace config_detail {
 
 // A visitor that does nothing, used to detect whether a type is a Config (has visit()).
@@ -42,8 +73,9 @@ class ConfigReaderProbe {
 template <class T, class = void>
 struct IsVisitable : std::false_type {};
 template <class T>
-struct IsVisitable<T, std::void_t<decltype(std::declval<T&>().visit(
-                          std::declval<ConfigReaderProbe&>()))>> : std::true_type {};
+struct IsVisitable<
+    T, std::void_t<decltype(std::declval<T&>().visit(std::declval<ConfigReaderProbe&>()))>>
+    : std::true_type {};
 
 // Strictly typed scalar reads: nlohmann's get<> would silently turn true into 1.0 or 2.7 into 2.
 void readScalar(const nlohmann::json& j, const std::string& path, double* out);
@@ -60,7 +92,8 @@ std::string joinPath(const std::string& path, const std::string& key);
 /// Visitor that fills a Config from a JSON object and records keys no field claimed.
 class ConfigReader {
  public:
-  ConfigReader(const nlohmann::json& node, std::string path, std::vector<std::string>* unknown_keys);
+  ConfigReader(const nlohmann::json& node, std::string path,
+               std::vector<std::string>* unknown_keys);
 
   template <class T>
   void operator()(const char* key, T& field) {
@@ -80,6 +113,16 @@ class ConfigReader {
       ConfigReader nested(j, path, unknown_keys_);
       out->visit(nested);
       nested.finish();
+    } else if constexpr (std::is_enum_v<T>) {
+      std::string name;
+      config_detail::readScalar(j, path, &name);
+      for (const auto& [value, spelling] : EnumNames<T>::kNames) {
+        if (name == spelling) {
+          *out = value;
+          return;
+        }
+      }
+      throw ConfigError(path + ": must be " + enumChoices<T>() + " (got \"" + name + "\")");
     } else {
       config_detail::readScalar(j, path, out);
     }
@@ -111,6 +154,8 @@ class ConfigWriter {
       ConfigWriter writer(&nested);
       const_cast<T&>(field).visit(writer);  // visit() only reads through this visitor
       (*out_)[key] = nested;
+    } else if constexpr (std::is_enum_v<T>) {
+      (*out_)[key] = enumName(field);
     } else {
       (*out_)[key] = field;
     }

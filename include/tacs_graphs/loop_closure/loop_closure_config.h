@@ -5,9 +5,21 @@
 #include <string>
 #include <vector>
 
+#include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/keyframe_retention.h"
 
 namespace tacs {
+
+/// loop_closure.method: room-triggered CoSG-LCD (the paper), the distance-threshold baseline on
+/// every keyframe, or none.
+enum class LoopMethod { kCosg, kDistance, kNone };
+template <>
+struct EnumNames<LoopMethod> {
+  static constexpr std::array<std::pair<LoopMethod, const char*>, 3> kNames{
+      {{LoopMethod::kCosg, "cosg"},
+       {LoopMethod::kDistance, "distance"},
+       {LoopMethod::kNone, "none"}}};
+};
 
 /// Keyframe preparation and the GICP settings shared by both detectors.
 struct LoopRegistrationConfig {
@@ -124,7 +136,7 @@ struct DistanceLoopConfig {
 };
 
 struct LoopClosureConfig {
-  std::string method = "cosg";  // cosg (room-triggered) | distance (every keyframe) | none
+  LoopMethod method = LoopMethod::kCosg;
   LoopRegistrationConfig registration;
   CosgLoopConfig cosg;
   DistanceLoopConfig distance;

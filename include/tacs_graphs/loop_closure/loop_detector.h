@@ -36,6 +36,7 @@
 #include "tacs_graphs/common/timing.h"
 #include "tacs_graphs/common/types.h"
 #include "tacs_graphs/loop_closure/loop_closure_config.h"
+#include "tacs_graphs/loop_closure/room_partitions.h"
 #include "tacs_graphs/odometry/gicp.h"
 
 namespace tacs {
@@ -148,6 +149,12 @@ class LoopDetector {
   /// Books a detection into the totals and remembers where its loops were closed.
   void finish(LoopDetection* detection, double elapsed_ms);
   LoopDetection skipped(const std::string& why, const Stopwatch& watch);
+  /// CoSG-LCD coarse path over the searched partitions of the query's room; accepted loops go to
+  /// `det`. Returns every registration made (the fine path's candidates).
+  std::vector<Registration> coarsePath(uint32_t query_id, const std::vector<uint32_t>& room,
+                                       const RoomPartitions& parts, LoopDetection* det);
+  /// CoSG-LCD fine path: the best weak coarse matches re-registered coarse-to-fine.
+  void finePath(uint32_t query_id, const std::vector<Registration>& coarse, LoopDetection* det);
 
   LoopClosureConfig config_;
   std::map<uint32_t, Keyframe> keyframes_;

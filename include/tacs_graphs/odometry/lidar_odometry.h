@@ -160,6 +160,9 @@ class LidarOdometry {
   };
 
   // One step of process(), each named for what it does.
+  /// The first scan: defines the odom frame (levelled on the floor when level_from_floor).
+  void startOn(double stamp, const PointCloud::Ptr& cloud, const GicpCloud::ConstPtr& scan_gicp,
+               OdometryResult* result);
   Pose3 predict(double stamp, bool* reset) const;
   /// The scan deskewed with `velocity` when it has point times, else the scan itself.
   PointCloud compensate(const PointCloud& scan, const std::vector<float>* offsets,
@@ -170,6 +173,10 @@ class LidarOdometry {
                           const Pose3& guess, bool reset, OdometryResult* result) const;
   GicpResult align(const GicpCloud::ConstPtr& scan, double gate_m, const Pose3& from,
                    double robust_m) const;
+  /// Re-aligns on refine_correspondence_distance_m when it is narrower than the gate.
+  void refineOnNarrowGate(const GicpCloud::ConstPtr& scan, GicpResult* registration) const;
+  /// Why the registration is not taken (too few inliers, beyond the adaptive limits), or "".
+  std::string rejection(const Pose3& guess, bool reset, const OdometryResult& result) const;
   double fitOf(const GicpCloud::ConstPtr& scan, const Pose3& T) const;
   bool withinLimits(const Pose3& guess, const Pose3& T) const;
   GicpResult recoverFromHypotheses(const PointCloud& cloud, const GicpCloud::ConstPtr& scan,

@@ -6,7 +6,26 @@
 
 #include <string>
 
+#include "tacs_graphs/common/config.h"
+
 namespace tacs {
+
+/// rooms.method: traversable free space (the paper), the S-Graphs+ style voxel baseline, or no
+/// rooms (odometry and walls only).
+enum class RoomMethod { kTacs, kVoxel, kNone };
+template <>
+struct EnumNames<RoomMethod> {
+  static constexpr std::array<std::pair<RoomMethod, const char*>, 3> kNames{
+      {{RoomMethod::kTacs, "tacs"}, {RoomMethod::kVoxel, "voxel"}, {RoomMethod::kNone, "none"}}};
+};
+
+/// rooms.voxel.merging: how a new voxel room joins the map.
+enum class VoxelMerging { kCenterDistance, kModule };
+template <>
+struct EnumNames<VoxelMerging> {
+  static constexpr std::array<std::pair<VoxelMerging, const char*>, 2> kNames{
+      {{VoxelMerging::kCenterDistance, "center_distance"}, {VoxelMerging::kModule, "module"}}};
+};
 
 /// Traversability-aware free-space segmentation (paper eq. 1-3).
 struct TacsFreeSpaceConfig {
@@ -71,7 +90,7 @@ struct VoxelFreeSpaceConfig {
   double merge_distance = 1.0;     // rooms closer than this (centre, 2D) are one room [m]
   /// How a new room joins the map: "center_distance" (S-Graphs+, `merge_distance`) or "module"
   /// (the room merging module of Sec. III-C, `rooms.merging`: the paper's baseline + RM).
-  std::string merging = "center_distance";
+  VoxelMerging merging = VoxelMerging::kCenterDistance;
 
   template <class V>
   void visit(V& v) {
@@ -146,9 +165,7 @@ struct RoomMergingConfig {
 };
 
 struct RoomsConfig {
-  /// "tacs" (traversable free space, the paper), "voxel" (S-Graphs+ style baseline) or "none"
-  /// (no rooms: odometry and walls only).
-  std::string method = "tacs";
+  RoomMethod method = RoomMethod::kTacs;
   TacsFreeSpaceConfig tacs;
   VoxelFreeSpaceConfig voxel;
   RoomExtractionConfig extraction;

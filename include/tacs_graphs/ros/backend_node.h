@@ -13,6 +13,13 @@
 //   ~recover (false)                replay ~output_dir/backend_journal.json at start
 //   ~map_publish_period_s (5.0)     /tacs/map_points period (only while subscribed)
 //   ~tf_rate_hz (20.0)              map -> odom broadcast rate
+//   ~journal_dir ("")               crash journal folder (message_journal.h); the launch files
+//                                   give output_dir/journal and respawn the node
+//   ~replay_journal (auto)          replay the journal at start: auto (after a respawn), true,
+//   false
+// After a replay it publishes a latched tacs_graphs/Resync on /tacs/resync: the odometry resends
+// the keyframes the backend missed while it was down, room_segmentation and loop_closure send
+// their rooms and loops again (duplicates are recognised and dropped).
 #pragma once
 
 #include <ros/ros.h>
@@ -24,11 +31,13 @@
 #include <tf2_ros/transform_broadcaster.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "tacs_graphs/backend/map_export.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
 #include "tacs_graphs/ros/backend_session.h"
+#include "tacs_graphs/ros/message_journal.h"
 #include "tacs_graphs/ros/warn_once.h"
 
 namespace tacs {
@@ -57,18 +66,22 @@ class BackendNode {
   /// Optimises if due and publishes the scene graph and markers.
   void update();
   bool save(std::string* message);
+  /// Rebuilds the session from the crash journal and asks the others to resend what it lacks.
+  void replayJournal();
 
   PipelineConfig config_;
   std::string output_dir_;
   bool save_on_shutdown_ = true;
   std::unique_ptr<BackendSession> session_;
+  std::unique_ptr<NodeJournal> journal_;
   double latest_stamp_ = 0.0;
   double last_tf_stamp_ = 0.0;
   bool map_dirty_ = false;
-  bool changed_ = false;  // messages taken since the last publishIfChanged()
+  bool changed_ = false;                 // messages taken since the last publishIfChanged()
+  std::optional<uint32_t> resync_from_;  // the first keyframe asked for again after a restart
 
   ros::Subscriber keyframe_sub_, walls_sub_, rooms_sub_, loop_sub_;
-  ros::Publisher graph_pub_, marker_pub_, map_pub_;
+  ros::Publisher graph_pub_, marker_pub_, map_pub_, resync_pub_;
   ros::ServiceServer save_srv_;
   ros::Timer tf_timer_, map_timer_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;

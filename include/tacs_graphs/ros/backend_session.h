@@ -11,6 +11,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -41,9 +42,11 @@ class BackendSession {
   /// Adds a keyframe and then any walls and loops that were waiting for it.
   Outcome addKeyframe(uint32_t id, double stamp, const Pose3& T_odom_base,
                       const Matrix6d& information, const PointCloud::ConstPtr& cloud);
-  /// Walls of keyframe `id` (base frame); buffered when the keyframe has not arrived yet.
+  /// Walls of keyframe `id` (base frame); buffered when the keyframe has not arrived yet. A
+  /// second message for a keyframe whose walls were taken is a duplicate (a resent keyframe).
   Outcome addWalls(uint32_t keyframe_id, const KeyframeWalls& walls);
-  /// A loop closure; buffered until both keyframes are known.
+  /// A loop closure; buffered until both keyframes are known. A pair already closed is a
+  /// duplicate (loops republished after a restart).
   Outcome addLoop(const LoopEdge& edge, const Matrix6d& information);
   /// A mapped room (map frame, wall ids of this backend's landmarks) and the wall-to-wall edges
   /// (mapped wall, observed wall) of its merging. Returns false when the backend holds none of
@@ -52,6 +55,8 @@ class BackendSession {
                const std::vector<std::pair<uint32_t, uint32_t>>& wall_to_wall = {});
   /// Removes a room merged into another (RoomAssociation::absorbed), from the graph and journal.
   void removeRoom(uint32_t id);
+  /// Removes every room not in `ids` (the room segmenter's complete set). Returns how many.
+  size_t retainRooms(const std::set<uint32_t>& ids);
   size_t roomCount() const { return backend_.roomCount(); }
 
   std::optional<OptimizationReport> optimizeIfDue() { return backend_.optimizeIfDue(); }
@@ -68,12 +73,20 @@ class BackendSession {
   /// The highest keyframe id taken (0 before the first).
   uint32_t newestKeyframe() const { return newest_keyframe_; }
   size_t pendingCount() const;
+  /// The first keyframe this session still misses something of after a restart: the oldest
+  /// recent keyframe without its walls, else the one after the newest.
+  uint32_t firstIncompleteKeyframe() const;
+  /// Ids below the newest that never arrived (gaps in the odometry's numbering).
+  std::vector<uint32_t> missingKeyframes() const;
 
   /// Map cloud (map frame): keyframe clouds at optimised poses plus a recovered map, if any.
   PointCloud mapCloud(double voxel_m) const;
 
-  /// Writes scene_graph.json, map.pcd, map.bt and backend_journal.json into `dir` (created if
-  /// needed), each atomically. Throws std::runtime_error.
+  /// Writes scene_graph.json, trajectory_tum.txt (keyframes at their optimised poses), map.pcd,
+  /// map.bt and backend_journal.json into `dir` (created if
+  /// needed), each atomically, and run.json: status "saving" first, "complete" last, with the
+  /// keyframe count, the keyframe ids that never arrived and the scan counts. Throws
+  /// std::runtime_error.
   void save(const std::string& dir, const MapExportConfig& map_config) const;
 
   /// Replays backend_journal.json of `dir` (and loads map.pcd as a fixed part of the map).
@@ -87,6 +100,7 @@ class BackendSession {
 
  private:
   void flushPending(uint32_t keyframe_id);
+  nlohmann::json runStatus(const std::string& status) const;
   void dropStalePending();
 
   PipelineConfig config_;
@@ -98,6 +112,11 @@ class BackendSession {
   std::map<uint32_t, KeyframeWalls> pending_walls_;
   std::vector<std::pair<LoopEdge, Matrix6d>> pending_loops_;
   std::map<uint32_t, nlohmann::json> journal_rooms_;  // latest version of each room, by id
+  std::map<uint32_t, std::set<std::pair<uint32_t, uint32_t>>> wall_to_wall_;  // by room id
+  std::set<uint32_t> keyframe_ids_;
+  std::set<uint32_t> keyframes_without_walls_;
+  std::set<uint32_t> walls_taken_;  // keyframes whose walls were added (even none)
+  std::set<std::pair<uint32_t, uint32_t>> loops_taken_;
   uint32_t newest_keyframe_ = 0;
   // Entries kept as compact JSON text: a parsed nlohmann::json tree takes about ten times the
   // memory, and the journal grows with every keyframe.

@@ -10,6 +10,8 @@
 //   ~publish_tf (true)                broadcast odom -> base (off when the bag already has it)
 //   ~points_queue_size (30)           clouds waiting for the odometry (3 s at 10 Hz); scans lost
 //                                     to a full queue are counted from the stamps and logged
+//   ~resend_capacity (100)            keyframes kept to resend on a tacs_graphs/Resync (a node
+//                                     restarted after a crash, message_journal.h)
 // Keyframe clouds go out at odometry.keyframe_cloud_voxel_m (finer than the odometry's own grid:
 // traversability needs several points per tri-grid node).
 #pragma once
@@ -18,6 +20,8 @@
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <std_msgs/Header.h>
+#include <tacs_graphs/Keyframe.h>
+#include <tacs_graphs/Resync.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
@@ -32,6 +36,7 @@
 #include "tacs_graphs/odometry/external_odometry.h"
 #include "tacs_graphs/odometry/lidar_odometry.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
+#include "tacs_graphs/ros/resend_buffer.h"
 #include "tacs_graphs/ros/scan_gap_monitor.h"
 #include "tacs_graphs/ros/warn_once.h"
 
@@ -49,6 +54,7 @@ class GicpOdometryNode {
  private:
   void cloudCallback(const sensor_msgs::PointCloud2::ConstPtr& msg);
   void externalOdomCallback(const nav_msgs::Odometry::ConstPtr& msg);
+  void resyncCallback(const tacs_graphs::Resync::ConstPtr& msg);
   /// processCloud(), then acknowledge() (used or skipped).
   void handleCloud(const sensor_msgs::PointCloud2::ConstPtr& msg);
   void processCloud(const sensor_msgs::PointCloud2::ConstPtr& msg);
@@ -66,6 +72,7 @@ class GicpOdometryNode {
 
   ros::Subscriber cloud_sub_;
   ros::Subscriber external_sub_;
+  ros::Subscriber resync_sub_;
   ros::Publisher odom_pub_;
   ros::Publisher keyframe_pub_;
   ros::Publisher scan_done_pub_;
@@ -78,6 +85,7 @@ class GicpOdometryNode {
   ScanGapMonitor scan_gaps_;
   OverloadMonitor overload_;
   std::optional<double> last_stamp_;
+  std::unique_ptr<ResendBuffer<tacs_graphs::Keyframe>> sent_keyframes_;
   size_t scans_processed_ = 0;
 };
 

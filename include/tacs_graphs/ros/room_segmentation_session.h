@@ -59,7 +59,7 @@ class RoomSegmentationSession {
   /// End of the sequence: the region still being accumulated (tacs) or a last clustering (voxel).
   RoomUpdate finish();
 
-  bool needsClouds() const { return segmenter_.config().method == "voxel"; }
+  bool needsClouds() const { return segmenter_.config().method == RoomMethod::kVoxel; }
   const RoomSegmenter& segmenter() const { return segmenter_; }
   const WallMap& wallMap() const { return wall_map_; }
   size_t pendingCount() const { return pending_.size(); }

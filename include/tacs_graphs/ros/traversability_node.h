@@ -2,12 +2,17 @@
 // TraversableGraph per keyframe, base frame, with the keyframe id and odometry pose), the
 // keyframe's ground and obstacle points (/tacs/ground_points, /tacs/obstacle_points) and the
 // graph drawn for rviz (/tacs/traversable_markers), both in the odometry frame.
+// A keyframe resent after a crash elsewhere is not processed again; the last ~resend_capacity (100)
+// graphs are sent again on a tacs_graphs/Resync instead (resend_buffer.h).
 #pragma once
 
 #include <ros/ros.h>
 #include <tacs_graphs/Keyframe.h>
+#include <tacs_graphs/Resync.h>
+#include <tacs_graphs/TraversableGraph.h>
 
 #include "tacs_graphs/pipeline/pipeline_config.h"
+#include "tacs_graphs/ros/resend_buffer.h"
 #include "tacs_graphs/ros/warn_once.h"
 #include "tacs_graphs/traversability/floor_frame.h"
 #include "tacs_graphs/traversability/traversability_mapper.h"
@@ -24,12 +29,15 @@ class TraversabilityNode {
 
  private:
   void keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg);
+  void resyncCallback(const tacs_graphs::Resync::ConstPtr& msg);
 
   PipelineConfig config_;
   TraversabilityMapper mapper_;
   FloorTracker floor_tracker_;  // traversability.find_floor_under_base: a hand-held sensor
-  ros::Subscriber keyframe_sub_;
+  ros::Subscriber keyframe_sub_, resync_sub_;
   ros::Publisher graph_pub_, ground_pub_, obstacle_pub_, marker_pub_;
+  ResendBuffer<tacs_graphs::TraversableGraph> sent_;
+  int64_t newest_id_ = -1;
   WarnOnce warnings_;
   size_t processed_ = 0;
 };

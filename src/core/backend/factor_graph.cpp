@@ -23,8 +23,6 @@ void BackendConfig::validate() const {
   }
   requireConfig(anchor_tilt_sigma >= 0, "backend.anchor_tilt_sigma", "must be >= 0");
   requireConfig(max_iterations >= 1, "backend.max_iterations", "must be >= 1");
-  requireConfig(trust_region == "levenberg_marquardt" || trust_region == "dogleg",
-                "backend.trust_region", "must be levenberg_marquardt or dogleg");
   requireConfig(num_threads >= 1, "backend.num_threads", "must be >= 1");
   requireConfig(optimize_every_keyframes >= 1, "backend.optimize_every_keyframes", "must be >= 1");
 }
@@ -110,6 +108,69 @@ void FactorGraph::setRoom(uint32_t id, const Eigen::Vector2d& center,
 
 void FactorGraph::removeRoom(uint32_t id) { rooms_.erase(id); }
 
+void FactorGraph::addKeyframeBlocks(ceres::Problem* problem, ceres::Manifold* quaternion) {
+  for (auto& [id, kf] : keyframes_) {
+    problem->AddParameterBlock(kf.t.data(), 3);
+    problem->AddParameterBlock(kf.q.data(), 4, quaternion);
+  }
+  if (!anchor_keyframe_) return;
+  auto& anchor = keyframes_.at(*anchor_keyframe_);
+  problem->SetParameterBlockConstant(anchor.t.data());
+  if (config_.anchor_tilt_sigma > 0.0) {
+    // Yaw is the gauge: held by a prior far tighter than anything that could pull on it.
+    constexpr double kYawSigma = 1e-6;
+    auto* cost = new ceres::AutoDiffCostFunction<AnchorOrientationFactor, 3, 4>(
+        new AnchorOrientationFactor(anchor_orientation_, config_.anchor_tilt_sigma, kYawSigma));
+    problem->AddResidualBlock(cost, nullptr, anchor.q.data());
+  } else {
+    problem->SetParameterBlockConstant(anchor.q.data());
+  }
+}
+
+void FactorGraph::addPoseAndWallFactors(ceres::Problem* problem) {
+  for (const auto& e : pose_edges_) {
+    auto& a = keyframes_.at(e.from);
+    auto& b = keyframes_.at(e.to);
+    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseFactor, 6, 3, 4, 3, 4>(
+        new RelativePoseFactor(e.T_from_to, e.sqrt_information));
+    ceres::LossFunction* loss = e.robust ? new ceres::HuberLoss(config_.loop_huber) : nullptr;
+    problem->AddResidualBlock(cost, loss, a.t.data(), a.q.data(), b.t.data(), b.q.data());
+  }
+  for (const auto& o : wall_observations_) {
+    auto& kf = keyframes_.at(o.keyframe);
+    auto* cost = new ceres::AutoDiffCostFunction<WallObservationFactor, 4, 3, 4, 2>(
+        new WallObservationFactor(o.n_base, o.d_base, config_.wall_sigma_normal,
+                                  config_.wall_sigma_d));
+    problem->AddResidualBlock(cost, new ceres::HuberLoss(config_.wall_huber), kf.t.data(),
+                              kf.q.data(), walls_.at(o.wall).data());
+  }
+}
+
+void FactorGraph::addRoomFactors(ceres::Problem* problem) {
+  for (auto& [id, room] : rooms_) {
+    for (const auto& [a, b] : room.wall_pairs) {
+      if (a == b) continue;  // both sides merged into one wall: no constraint left
+      auto* cost = new ceres::AutoDiffCostFunction<RoomPairFactor, 1, 2, 2, 2>(
+          new RoomPairFactor(config_.room_sigma));
+      problem->AddResidualBlock(cost, nullptr, room.center.data(), walls_.at(a).data(),
+                                walls_.at(b).data());
+    }
+    if (room.corridor_anchor && !room.wall_pairs.empty()) {
+      auto* cost = new ceres::AutoDiffCostFunction<CorridorAnchorFactor, 1, 2, 2>(
+          new CorridorAnchorFactor(*room.corridor_anchor, config_.corridor_anchor_sigma));
+      problem->AddResidualBlock(cost, nullptr, room.center.data(),
+                                walls_.at(room.wall_pairs.front().first).data());
+    }
+    if (room.wall_pairs.empty()) problem->AddParameterBlock(room.center.data(), 2);
+  }
+  for (const auto& [a, b] : wall_to_wall_) {
+    if (a == b) continue;
+    auto* cost = new ceres::AutoDiffCostFunction<WallToWallFactor, 2, 2, 2>(
+        new WallToWallFactor(config_.wall_merge_sigma_theta, config_.wall_merge_sigma_d));
+    problem->AddResidualBlock(cost, nullptr, walls_.at(a).data(), walls_.at(b).data());
+  }
+}
+
 OptimizationReport FactorGraph::optimize() {
   OptimizationReport report;
   Stopwatch watch;
@@ -117,62 +178,9 @@ OptimizationReport FactorGraph::optimize() {
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
   ceres::EigenQuaternionManifold quaternion_manifold;
-
-  for (auto& [id, kf] : keyframes_) {
-    problem.AddParameterBlock(kf.t.data(), 3);
-    problem.AddParameterBlock(kf.q.data(), 4, &quaternion_manifold);
-  }
-  if (anchor_keyframe_) {
-    auto& anchor = keyframes_.at(*anchor_keyframe_);
-    problem.SetParameterBlockConstant(anchor.t.data());
-    if (config_.anchor_tilt_sigma > 0.0) {
-      // Yaw is the gauge: held by a prior far tighter than anything that could pull on it.
-      constexpr double kYawSigma = 1e-6;
-      auto* cost = new ceres::AutoDiffCostFunction<AnchorOrientationFactor, 3, 4>(
-          new AnchorOrientationFactor(anchor_orientation_, config_.anchor_tilt_sigma, kYawSigma));
-      problem.AddResidualBlock(cost, nullptr, anchor.q.data());
-    } else {
-      problem.SetParameterBlockConstant(anchor.q.data());
-    }
-  }
-  for (const auto& e : pose_edges_) {
-    auto& a = keyframes_.at(e.from);
-    auto& b = keyframes_.at(e.to);
-    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseFactor, 6, 3, 4, 3, 4>(
-        new RelativePoseFactor(e.T_from_to, e.sqrt_information));
-    ceres::LossFunction* loss = e.robust ? new ceres::HuberLoss(config_.loop_huber) : nullptr;
-    problem.AddResidualBlock(cost, loss, a.t.data(), a.q.data(), b.t.data(), b.q.data());
-  }
-  for (const auto& o : wall_observations_) {
-    auto& kf = keyframes_.at(o.keyframe);
-    auto* cost = new ceres::AutoDiffCostFunction<WallObservationFactor, 4, 3, 4, 2>(
-        new WallObservationFactor(o.n_base, o.d_base, config_.wall_sigma_normal,
-                                  config_.wall_sigma_d));
-    problem.AddResidualBlock(cost, new ceres::HuberLoss(config_.wall_huber), kf.t.data(),
-                             kf.q.data(), walls_.at(o.wall).data());
-  }
-  for (auto& [id, room] : rooms_) {
-    for (const auto& [a, b] : room.wall_pairs) {
-      if (a == b) continue;  // both sides merged into one wall: no constraint left
-      auto* cost = new ceres::AutoDiffCostFunction<RoomPairFactor, 1, 2, 2, 2>(
-          new RoomPairFactor(config_.room_sigma));
-      problem.AddResidualBlock(cost, nullptr, room.center.data(), walls_.at(a).data(),
-                               walls_.at(b).data());
-    }
-    if (room.corridor_anchor && !room.wall_pairs.empty()) {
-      auto* cost = new ceres::AutoDiffCostFunction<CorridorAnchorFactor, 1, 2, 2>(
-          new CorridorAnchorFactor(*room.corridor_anchor, config_.corridor_anchor_sigma));
-      problem.AddResidualBlock(cost, nullptr, room.center.data(),
-                               walls_.at(room.wall_pairs.front().first).data());
-    }
-    if (room.wall_pairs.empty()) problem.AddParameterBlock(room.center.data(), 2);
-  }
-  for (const auto& [a, b] : wall_to_wall_) {
-    if (a == b) continue;
-    auto* cost = new ceres::AutoDiffCostFunction<WallToWallFactor, 2, 2, 2>(
-        new WallToWallFactor(config_.wall_merge_sigma_theta, config_.wall_merge_sigma_d));
-    problem.AddResidualBlock(cost, nullptr, walls_.at(a).data(), walls_.at(b).data());
-  }
+  addKeyframeBlocks(&problem, &quaternion_manifold);
+  addPoseAndWallFactors(&problem);
+  addRoomFactors(&problem);
   report.residual_blocks = static_cast<size_t>(problem.NumResidualBlocks());
   if (report.residual_blocks == 0) {
     report.usable = true;
@@ -183,7 +191,8 @@ OptimizationReport FactorGraph::optimize() {
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   options.max_num_iterations = config_.max_iterations;
-  if (config_.trust_region == "dogleg") options.trust_region_strategy_type = ceres::DOGLEG;
+  if (config_.trust_region == TrustRegion::kDogleg)
+    options.trust_region_strategy_type = ceres::DOGLEG;
   options.num_threads = config_.num_threads;
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;

@@ -141,6 +141,65 @@ std::map<std::string, std::map<size_t, MethodSummary>> summarize(const std::vect
   return out;
 }
 
+namespace {
+
+using Summaries = std::map<std::string, std::map<size_t, MethodSummary>>;
+
+// Table III: ATE per world and method, the odometry alone first, and the path-weighted mean.
+void writeAteTable(std::ostringstream& md, const Summaries& summaries,
+                   const std::vector<EvalMethod>& methods) {
+  md << "\n## Table III: pose accuracy, ATE (m)\n\n| Method |";
+  for (const auto& [world, by_method] : summaries) md << " " << world << " |";
+  md << " wATE |\n|---|";
+  for (size_t i = 0; i <= summaries.size(); ++i) md << "---|";
+  md << "\n";
+  // Odometry alone (no backend) first, from the first method's runs.
+  for (int row = -1; row < static_cast<int>(methods.size()); ++row) {
+    md << "| " << (row < 0 ? std::string("GICP odometry only") : methods[row].label) << " |";
+    double weighted = 0.0, length = 0.0;
+    for (const auto& [world, by_method] : summaries) {
+      const auto it = by_method.find(row < 0 ? 0 : static_cast<size_t>(row));
+      if (it == by_method.end()) {
+        md << " - |";
+        continue;
+      }
+      const double ate = row < 0 ? it->second.odom_ate_m : it->second.ate_m;
+      md << " " << fixed(ate, 4) << " |";
+      weighted += ate * it->second.path_m, length += it->second.path_m;
+    }
+    md << " " << (length > 0 ? fixed(weighted / length, 4) : "-") << " |\n";
+  }
+}
+
+// Each method's ATE against the first method's on the same trials (paired differences).
+void writePairedAteTable(std::ostringstream& md, const Summaries& summaries,
+                         const std::vector<EvalMethod>& methods) {
+  md << "\n## ATE against " << methods[0].label << ", trial by trial\n\n"
+     << "Delta ATE = ATE(method) - ATE(" << methods[0].name
+     << ") on the same trial (noise seed), in mm: its mean, the 95 % interval of the mean "
+        "(Student t), and the trials where "
+     << methods[0].name
+     << " is the more accurate. An interval holding 0 is a difference the trials do not "
+        "resolve.\n\n"
+     << "| World | Method | Delta ATE (mm) | 95 % interval (mm) | " << methods[0].name
+     << " better |\n|---|---|---|---|---|\n";
+  for (const auto& [world, by_method] : summaries) {
+    const auto first = by_method.find(0);
+    if (first == by_method.end()) continue;
+    for (const auto& [m, s] : by_method) {
+      if (m == 0) continue;
+      const PairedDifference d = pairedDifference(first->second.ate_by_trial_m, s.ate_by_trial_m);
+      if (d.trials == 0) continue;
+      md << "| " << world << " | " << methods[m].label << " | " << fixed(1000.0 * d.mean, 2)
+         << " | " << fixed(1000.0 * (d.mean - d.ci95), 2) << " .. "
+         << fixed(1000.0 * (d.mean + d.ci95), 2) << " | " << d.a_lower << " of " << d.trials
+         << " |\n";
+    }
+  }
+}
+
+}  // namespace
+
 void writeEvalReport(const std::string& out_dir, const std::vector<EvalRun>& runs,
                      const std::vector<EvalMethod>& methods) {
   std::vector<std::string> errors;
@@ -189,52 +248,8 @@ void writeEvalReport(const std::string& out_dir, const std::vector<EvalRun>& run
            fixed(s.t_ld_s, 3);
   });
 
-  md << "\n## Table III: pose accuracy, ATE (m)\n\n| Method |";
-  for (const auto& [world, by_method] : summaries) md << " " << world << " |";
-  md << " wATE |\n|---|";
-  for (size_t i = 0; i <= summaries.size(); ++i) md << "---|";
-  md << "\n";
-  // Odometry alone (no backend) first, from the first method's runs.
-  for (int row = -1; row < static_cast<int>(methods.size()); ++row) {
-    md << "| " << (row < 0 ? std::string("GICP odometry only") : methods[row].label) << " |";
-    double weighted = 0.0, length = 0.0;
-    for (const auto& [world, by_method] : summaries) {
-      const auto it = by_method.find(row < 0 ? 0 : static_cast<size_t>(row));
-      if (it == by_method.end()) {
-        md << " - |";
-        continue;
-      }
-      const double ate = row < 0 ? it->second.odom_ate_m : it->second.ate_m;
-      md << " " << fixed(ate, 4) << " |";
-      weighted += ate * it->second.path_m, length += it->second.path_m;
-    }
-    md << " " << (length > 0 ? fixed(weighted / length, 4) : "-") << " |\n";
-  }
-
-  if (methods.size() > 1) {
-    md << "\n## ATE against " << methods[0].label << ", trial by trial\n\n"
-       << "Delta ATE = ATE(method) - ATE(" << methods[0].name
-       << ") on the same trial (noise seed), in mm: its mean, the 95 % interval of the mean "
-          "(Student t), and the trials where "
-       << methods[0].name
-       << " is the more accurate. An interval holding 0 is a difference the trials do not "
-          "resolve.\n\n"
-       << "| World | Method | Delta ATE (mm) | 95 % interval (mm) | " << methods[0].name
-       << " better |\n|---|---|---|---|---|\n";
-    for (const auto& [world, by_method] : summaries) {
-      const auto first = by_method.find(0);
-      if (first == by_method.end()) continue;
-      for (const auto& [m, s] : by_method) {
-        if (m == 0) continue;
-        const PairedDifference d = pairedDifference(first->second.ate_by_trial_m, s.ate_by_trial_m);
-        if (d.trials == 0) continue;
-        md << "| " << world << " | " << methods[m].label << " | " << fixed(1000.0 * d.mean, 2)
-           << " | " << fixed(1000.0 * (d.mean - d.ci95), 2) << " .. "
-           << fixed(1000.0 * (d.mean + d.ci95), 2) << " | " << d.a_lower << " of " << d.trials
-           << " |\n";
-      }
-    }
-  }
+  writeAteTable(md, summaries, methods);
+  if (methods.size() > 1) writePairedAteTable(md, summaries, methods);
 
   md << "\n## Runs\n\n| World | Method | path (m) | odometry ATE (m) | scans/s | wall time (s) |\n"
      << "|---|---|---|---|---|---|\n";

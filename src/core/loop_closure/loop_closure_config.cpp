@@ -56,8 +56,6 @@ void DistanceLoopConfig::validate() const {
 }
 
 void LoopClosureConfig::validate() const {
-  requireConfig(method == "cosg" || method == "distance" || method == "none", "loop_closure.method",
-                "must be cosg, distance or none (got '" + method + "')");
   registration.validate();
   cosg.validate();
   distance.validate();

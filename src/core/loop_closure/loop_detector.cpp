@@ -274,7 +274,6 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
   auto query_it = keyframes_.find(query_id);
   if (query_it == keyframes_.end()) return skipped("unknown query keyframe", watch);
   if (!query_it->second.cloud) return skipped("the query keyframe's cloud was released", watch);
-  LoopDetection det;
   const Keyframe& query = query_it->second;
   const CosgLoopConfig& cc = config_.cosg;
   if (soonAfterLastLoop(query, cc.min_loop_interval_m)) {
@@ -290,68 +289,83 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
     positions.push_back(it->second.T_map_base.translation().head<2>());
   }
   if (room.empty()) return skipped("the room has no other known keyframe", watch);
-  const Eigen::Vector3d q_pos = query.T_map_base.translation();
-  const RoomPartitions parts = partitionRoom(positions, q_pos.head<2>(), cc.partition_length_m);
+  LoopDetection det;
+  const RoomPartitions parts =
+      partitionRoom(positions, query.T_map_base.translation().head<2>(), cc.partition_length_m);
   det.partitions = static_cast<int>(parts.centers.size());
   det.searched_partitions = parts.selected;
+  const std::vector<Registration> coarse = coarsePath(query_id, room, parts, &det);
+  if (det.loops.empty() && cc.max_fine_candidates > 0) finePath(query_id, coarse, &det);
+  finish(&det, watch.elapsedMs());
+  return det;
+}
 
-  // Coarse path (Fig. 5(b)), partitions nearest first: register the nearest candidates of each
-  // from the estimates; a partition's best pair is a loop when it reaches S_coarse, unless its
-  // candidate lies within L_part along the path of an accepted loop's candidate: that would tie
-  // the query to the same stretch of the earlier visit again. A partition whose candidates all
-  // lie there is not registered at all (one room passed in one go gives one loop, not two).
+std::vector<LoopDetector::Registration> LoopDetector::coarsePath(uint32_t query_id,
+                                                                 const std::vector<uint32_t>& room,
+                                                                 const RoomPartitions& parts,
+                                                                 LoopDetection* det) {
+  // Fig. 5(b), partitions nearest first: register the nearest candidates of each from the
+  // estimates; a partition's best pair is a loop when it reaches S_coarse, unless its candidate
+  // lies within L_part along the path of an accepted loop's candidate: that would tie the query
+  // to the same stretch of the earlier visit again. A partition whose candidates all lie there
+  // is not registered at all (one room passed in one go gives one loop, not two).
+  const CosgLoopConfig& cc = config_.cosg;
+  const Keyframe& query = keyframes_.at(query_id);
+  const Eigen::Vector3d q_pos = query.T_map_base.translation();
   const auto repeats_loop = [&](uint32_t candidate) {
     const double along = keyframes_.at(candidate).accum_distance;
-    return std::any_of(det.loops.begin(), det.loops.end(), [&](const LoopClosure& loop) {
+    return std::any_of(det->loops.begin(), det->loops.end(), [&](const LoopClosure& loop) {
       return std::abs(keyframes_.at(loop.from).accum_distance - along) < cc.partition_length_m;
     });
   };
   const GicpConfig coarse_gicp = gicpConfig(cc.coarse_correspondence_m, true);
-  std::vector<std::vector<Registration>> coarse(parts.selected.size());
-  for (size_t s = 0; s < parts.selected.size(); ++s) {
+  std::vector<Registration> all;
+  for (int partition : parts.selected) {
     std::vector<std::pair<double, uint32_t>> near;  // (distance, id)
     for (size_t i = 0; i < room.size(); ++i) {
-      if (parts.index_of[i] != parts.selected[s]) continue;
+      if (parts.index_of[i] != partition) continue;
       const Keyframe& cand = keyframes_.at(room[i]);
       if (!cand.cloud || isRecent(cand, room[i], query, query_id)) continue;
       const double d = (cand.T_map_base.translation() - q_pos).norm();
       if (d <= cc.d_loop_m) near.emplace_back(d, room[i]);
     }
     std::sort(near.begin(), near.end());
-    for (const auto& [d, id] : near) det.candidates.push_back(id);
+    for (const auto& [d, id] : near) det->candidates.push_back(id);
     near.resize(std::min(near.size(), static_cast<size_t>(cc.max_candidates_per_partition)));
     if (std::all_of(near.begin(), near.end(),
                     [&](const auto& n) { return repeats_loop(n.second); })) {
       continue;
     }
+    const size_t first = all.size();
     for (const auto& [d, id] : near) {
       const Pose3 guess = keyframes_.at(id).T_map_base.inverse() * query.T_map_base;
-      coarse[s].push_back(registerPair(id, query_id, guess, coarse_gicp));
-      det.registered.push_back(id);
-      det.coarse_scores.push_back(coarse[s].back().score);
-      ++det.registrations;
+      all.push_back(registerPair(id, query_id, guess, coarse_gicp));
+      det->registered.push_back(id);
+      det->coarse_scores.push_back(all.back().score);
+      ++det->registrations;
     }
-    auto best = std::max_element(coarse[s].begin(), coarse[s].end(),
+    auto best = std::max_element(all.begin() + first, all.end(),
                                  [](const auto& a, const auto& b) { return a.score < b.score; });
-    if (best != coarse[s].end() && best->score >= cc.s_coarse && !repeats_loop(best->candidate)) {
-      det.loops.push_back(makeLoop(*best, query_id, LoopPath::kCoarse, &det));
+    if (best != all.end() && best->score >= cc.s_coarse && !repeats_loop(best->candidate)) {
+      det->loops.push_back(makeLoop(*best, query_id, LoopPath::kCoarse, det));
     }
   }
-  std::sort(det.loops.begin(), det.loops.end(),
+  std::sort(det->loops.begin(), det->loops.end(),
             [](const LoopClosure& a, const LoopClosure& b) { return a.score > b.score; });
-  if (!det.loops.empty() || cc.max_fine_candidates == 0) {
-    finish(&det, watch.elapsedMs());
-    return det;
-  }
-  // Fine path: no pair reached S_coarse, typically because the estimates are too far off for the
-  // narrow gate. Weaker matches reaching S_fine are re-registered from the estimate with gates
+  return all;
+}
+
+void LoopDetector::finePath(uint32_t query_id, const std::vector<Registration>& coarse,
+                            LoopDetection* det) {
+  // No pair reached S_coarse, typically because the estimates are too far off for the narrow
+  // gate. Weaker matches reaching S_fine are re-registered from the estimate with gates
   // shrinking stage by stage (coarse-to-fine); the refined pose must still earn S_coarse, as a
   // wide gate can also settle on a wrong but locally consistent pose.
+  const CosgLoopConfig& cc = config_.cosg;
+  const Keyframe& query = keyframes_.at(query_id);
   std::vector<const Registration*> weak;
-  for (const auto& regs : coarse) {
-    for (const Registration& r : regs) {
-      if (r.score >= cc.s_fine) weak.push_back(&r);
-    }
+  for (const Registration& r : coarse) {
+    if (r.score >= cc.s_fine) weak.push_back(&r);
   }
   std::sort(weak.begin(), weak.end(), [](auto a, auto b) { return a->score > b->score; });
   if (weak.size() > static_cast<size_t>(cc.max_fine_candidates)) {
@@ -367,20 +381,18 @@ LoopDetection LoopDetector::detectInRoom(uint32_t query_id,
       refined =
           registerPair(w->candidate, query_id, pose, gicpConfig(schedule[stage], false), last);
       pose = refined.gicp.T_target_source;
-      ++det.registrations;
+      ++det->registrations;
     }
-    det.refined.push_back(refined.candidate);
-    det.refined_scores.push_back(refined.score);
+    det->refined.push_back(refined.candidate);
+    det->refined_scores.push_back(refined.score);
     if (!best_fine || refined.score > best_fine->score) best_fine = refined;
     // The wide gates came back to the coarse pose: the estimate was right and the scene scores
     // low (clutter), so the weaker matches, seen from the same estimate, would only repeat that.
     if (settledOn(refined.gicp.T_target_source, w->gicp.T_target_source)) break;
   }
   if (best_fine && best_fine->score >= cc.s_coarse) {
-    det.loops.push_back(makeLoop(*best_fine, query_id, LoopPath::kFine, &det));
+    det->loops.push_back(makeLoop(*best_fine, query_id, LoopPath::kFine, det));
   }
-  finish(&det, watch.elapsedMs());
-  return det;
 }
 
 uint32_t cosgQueryKeyframe(const std::vector<uint32_t>& room_keyframe_ids, uint32_t fallback) {

@@ -241,6 +241,50 @@ void LidarOdometry::updateRecentFit(double fit) {
   recent_fit_ = recent_fit_ > 0.0 ? 0.8 * recent_fit_ + 0.2 * fit : fit;
 }
 
+void LidarOdometry::startOn(double stamp, const PointCloud::Ptr& cloud,
+                            const GicpCloud::ConstPtr& scan_gicp, OdometryResult* result) {
+  initialized_ = true;
+  last_stamp_ = stamp;
+  last_pose_ = Pose3::Identity();
+  if (config_.level_from_floor) {
+    FloorSearch search;
+    search.max_tilt_deg = config_.level_max_tilt_deg;
+    result->floor = findFloor(*cloud, search);
+    if (result->floor) last_pose_.linear() = levellingRotation(result->floor->normal);
+  }
+  result->T_odom_base = last_pose_;
+  addKeyframe(result, scan_gicp, cloud);
+}
+
+void LidarOdometry::refineOnNarrowGate(const GicpCloud::ConstPtr& scan_gicp,
+                                       GicpResult* registration) const {
+  const double refine_m = config_.refine_correspondence_distance_m;
+  if (refine_m <= 0.0 || refine_m >= config_.gicp.max_correspondence_distance_m) return;
+  // The inlier test stays on the wide gate's pairs: the narrow gate leaves out far points by
+  // design.
+  registration->T_target_source = align(scan_gicp, refine_m, registration->T_target_source,
+                                        config_.refine_robust_plane_distance_m)
+                                      .T_target_source;
+}
+
+std::string LidarOdometry::rejection(const Pose3& guess, bool reset,
+                                     const OdometryResult& result) const {
+  const GicpResult& reg = result.registration;
+  if (reg.inlier_ratio < config_.min_inlier_ratio) {
+    return format("registration rejected: inlier ratio %.2f < %.2f", reg.inlier_ratio,
+                  config_.min_inlier_ratio);
+  }
+  if (!reset && !result.recovered && !withinLimits(guess, reg.T_target_source)) {
+    const Pose3 correction = guess.inverse() * reg.T_target_source;
+    return format(
+        "registration rejected: it moved the constant-velocity guess by %.2f m "
+        "and %.1f deg (beyond the adaptive limits, floor %.2f m, %.1f deg)",
+        correction.translation().norm(), rotationAngleDeg(correction), config_.max_correction_m,
+        config_.max_correction_deg);
+  }
+  return "";
+}
+
 OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
                                       const std::vector<float>* point_offsets_s) {
   Stopwatch watch;
@@ -279,24 +323,12 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
       GicpCloud::build(*cloud, config_.gicp.k_neighbors, config_.gicp.num_threads);
 
   if (!initialized_) {  // the first scan defines the odom frame
-    initialized_ = true;
-    last_stamp_ = stamp;
-    last_pose_ = Pose3::Identity();
-    if (config_.level_from_floor) {
-      FloorSearch search;
-      search.max_tilt_deg = config_.level_max_tilt_deg;
-      result.floor = findFloor(*cloud, search);
-      if (result.floor) last_pose_.linear() = levellingRotation(result.floor->normal);
-    }
-    result.T_odom_base = last_pose_;
-    addKeyframe(&result, scan_gicp, cloud);
+    startOn(stamp, cloud, scan_gicp, &result);
     attachKeyframeCloud(compensated, &result);
     return finish("");
   }
 
   result.registration = registerScan(scan_gicp, *cloud, guess, reset, &result);
-  const double gate_m = config_.gicp.max_correspondence_distance_m;
-  const double refine_m = config_.refine_correspondence_distance_m;
   if (result.deskewed && config_.deskew_refine) {
     // Deskewed once more with the motion the registration found, so the refinement below sees
     // the scan as the registered motion would have measured it.
@@ -306,27 +338,10 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
     cloud.reset(new PointCloud(preprocess(compensated, config_.preprocess, &result.preprocess)));
     scan_gicp = GicpCloud::build(*cloud, config_.gicp.k_neighbors, config_.gicp.num_threads);
   }
-  if (refine_m > 0.0 && refine_m < gate_m) {
-    // The inlier test below stays on the wide gate's pairs: the narrow gate leaves out far
-    // points by design.
-    result.registration.T_target_source =
-        align(scan_gicp, refine_m, result.registration.T_target_source,
-              config_.refine_robust_plane_distance_m)
-            .T_target_source;
-  }
+  refineOnNarrowGate(scan_gicp, &result.registration);
+  const std::string rejected = rejection(guess, reset, result);
+  if (!rejected.empty()) return finish(rejected);
   const GicpResult& reg = result.registration;
-  if (reg.inlier_ratio < config_.min_inlier_ratio) {
-    return finish(format("registration rejected: inlier ratio %.2f < %.2f", reg.inlier_ratio,
-                         config_.min_inlier_ratio));
-  }
-  if (!reset && !result.recovered && !withinLimits(guess, reg.T_target_source)) {
-    const Pose3 correction = guess.inverse() * reg.T_target_source;
-    return finish(
-        format("registration rejected: it moved the constant-velocity guess by %.2f m "
-               "and %.1f deg (beyond the adaptive limits, floor %.2f m, %.1f deg)",
-               correction.translation().norm(), rotationAngleDeg(correction),
-               config_.max_correction_m, config_.max_correction_deg));
-  }
   updateMotionModel(stamp, guess, reg.T_target_source, reset);
   updateRecentFit(result.fit);
   result.T_odom_base = last_pose_;

@@ -95,7 +95,7 @@ void Pipeline::processKeyframe(const OdometryResult& odom, ScanOutcome* outcome)
 
   // Traversable graph of the keyframe into the map (Sec. III-A, III-B-2); the voxel baseline
   // segments from the clouds instead.
-  if (config_.rooms.method == "tacs") {
+  if (config_.rooms.method == RoomMethod::kTacs) {
     Stopwatch watch;
     const TraversabilityResult trav = traversability_mapper_.process(ground_cloud);
     traversable_map_.insert(trav.graph, groundPose(id), id);
@@ -107,7 +107,7 @@ void Pipeline::processKeyframe(const OdometryResult& odom, ScanOutcome* outcome)
       id, groundPose(id), traversable_map_, backend_.wallMap(), &cloud);
   stage_times_.add("rooms", rooms.time_ms);
   applyRooms(rooms, id, outcome);
-  if (config_.loop_closure.method == "distance") {
+  if (config_.loop_closure.method == LoopMethod::kDistance) {
     applyLoops(loop_detector_.detectByDistance(id), outcome);
   }
 
@@ -133,7 +133,7 @@ void Pipeline::applyRooms(const RoomSegmentationResult& result, uint32_t query_k
     if (a.created) continue;
     ++stats_.room_redetections;
     const uint32_t query = cosgQueryKeyframe(room->second.room.keyframe_ids, query_keyframe);
-    if (config_.loop_closure.method == "cosg" && backend_.hasKeyframe(query)) {
+    if (config_.loop_closure.method == LoopMethod::kCosg && backend_.hasKeyframe(query)) {
       applyLoops(loop_detector_.detectInRoom(query, room->second.room.keyframe_ids), outcome);
     }
   }
@@ -152,7 +152,7 @@ void Pipeline::propagatePoses(bool rebuild_traversable_map) {
   std::map<uint32_t, Pose3> poses;
   for (uint32_t id : keyframe_ids_) poses[id] = backend_.keyframePose(id);
   loop_detector_.updatePoses(poses);
-  if (rebuild_traversable_map && config_.rooms.method == "tacs") {
+  if (rebuild_traversable_map && config_.rooms.method == RoomMethod::kTacs) {
     Stopwatch watch;
     for (auto& [id, pose] : poses) pose = groundPose(id);
     traversable_map_.updatePoses(poses);

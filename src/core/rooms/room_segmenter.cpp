@@ -39,7 +39,7 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
   // A TACS region that ran through a doorway unnoticed holds two mapped rooms a wall separates;
   // merging would fold them into one.
   const auto spans_rooms = [&](const RoomExtractionResult& r) {
-    return config_.method == "tacs" && r.found &&
+    return config_.method == RoomMethod::kTacs && r.found &&
            room_map_.spansSeparateRooms(r.room, walls.landmarks());
   };
   bool spans = spans_rooms(extracted);
@@ -72,8 +72,8 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
     return;
   }
   extracted.room.keyframe_ids = std::move(keyframe_ids);
-  const bool by_center_distance =
-      config_.method == "voxel" && config_.voxel.merging == "center_distance";
+  const bool by_center_distance = config_.method == RoomMethod::kVoxel &&
+                                  config_.voxel.merging == VoxelMerging::kCenterDistance;
   const RoomAssociation a = by_center_distance
                                 ? room_map_.addByCenterDistance(extracted.room, walls.landmarks(),
                                                                 config_.voxel.merge_distance)
@@ -96,10 +96,10 @@ RoomSegmentationResult RoomSegmenter::processKeyframe(uint32_t keyframe_id, cons
                                                       const PointCloud* cloud_in_base) {
   Stopwatch watch;
   RoomSegmentationResult result;
-  if (config_.method == "none") return result;
+  if (config_.method == RoomMethod::kNone) return result;
   room_map_.refreshWalls(walls.landmarks());
   const DominantAxes axes = estimateDominantAxes(walls, axes_config_);
-  if (config_.method == "voxel") {
+  if (config_.method == RoomMethod::kVoxel) {
     if (!cloud_in_base) {
       result.rejected.push_back("voxel method: no keyframe cloud given");
     } else {
@@ -125,10 +125,10 @@ RoomSegmentationResult RoomSegmenter::processKeyframe(uint32_t keyframe_id, cons
 RoomSegmentationResult RoomSegmenter::finish(const TraversableMap& map, const WallMap& walls) {
   Stopwatch watch;
   RoomSegmentationResult result;
-  if (config_.method == "none") return result;
+  if (config_.method == RoomMethod::kNone) return result;
   room_map_.refreshWalls(walls.landmarks());
   const DominantAxes axes = estimateDominantAxes(walls, axes_config_);
-  if (config_.method == "voxel") {
+  if (config_.method == RoomMethod::kVoxel) {
     clusterVoxels(walls, axes, &result);
   } else if (auto region = tacs_.flush(map, walls.landmarks())) {
     addRegion(std::move(region->points), std::move(region->keyframe_ids),

@@ -32,8 +32,6 @@ void VoxelFreeSpaceConfig::validate() const {
   requireConfig(min_cluster_area >= 0.0, p + "min_cluster_area", "must be >= 0");
   requireConfig(update_every_keyframes >= 1, p + "update_every_keyframes", "must be >= 1");
   requireConfig(merge_distance > 0.0, p + "merge_distance", "must be > 0");
-  requireConfig(merging == "center_distance" || merging == "module", p + "merging",
-                "must be \"center_distance\" or \"module\" (got \"" + merging + "\")");
 }
 
 void RoomExtractionConfig::validate() const {
@@ -58,8 +56,6 @@ void RoomMergingConfig::validate() const {
 }
 
 void RoomsConfig::validate() const {
-  requireConfig(method == "tacs" || method == "voxel" || method == "none", "rooms.method",
-                "must be \"tacs\", \"voxel\" or \"none\" (got \"" + method + "\")");
   tacs.validate();
   voxel.validate();
   extraction.validate();

@@ -4,9 +4,23 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <memory>
 #include <unordered_set>
 
 namespace tacs {
+namespace {
+
+// Three voxel indices in one key, 21 bits each: distinct voxels get distinct keys within +-2^20
+// voxels of the origin (+-10 km at 1 cm), unlike a hash of them (two voxels sharing a hash would
+// count as one).
+int64_t packVoxel(int64_t vx, int64_t vy, int64_t vz) {
+  constexpr uint64_t kMask = (uint64_t{1} << 21) - 1;
+  return static_cast<int64_t>(((static_cast<uint64_t>(vx) & kMask) << 42) |
+                              ((static_cast<uint64_t>(vy) & kMask) << 21) |
+                              (static_cast<uint64_t>(vz) & kMask));
+}
+
+}  // namespace
 
 VoxelFreeSpace::VoxelFreeSpace(const VoxelFreeSpaceConfig& config) : config_(config) {
   config_.validate();
@@ -37,7 +51,7 @@ void VoxelFreeSpace::integrate(uint32_t keyframe_id, const PointCloud& cloud_in_
       const int64_t vx = static_cast<int64_t>(std::floor(p.x() / config_.downsample));
       const int64_t vy = static_cast<int64_t>(std::floor(p.y() / config_.downsample));
       const int64_t vz = static_cast<int64_t>(std::floor(p.z() / config_.downsample));
-      if (!voxels.insert((vx * 73856093) ^ (vy * 19349663) ^ (vz * 83492791)).second) continue;
+      if (!voxels.insert(packVoxel(vx, vy, vz)).second) continue;
     }
     points.push_back(p);
   }
@@ -81,67 +95,75 @@ void VoxelFreeSpace::integrate(uint32_t keyframe_id, const PointCloud& cloud_in_
   }
 }
 
-std::vector<VoxelFreeSpace::Cluster> VoxelFreeSpace::clusters() const {
-  std::vector<Cluster> out;
-  if (cells_.empty()) return out;
-  // Dense grid over the known cells.
-  int64_t x0 = std::numeric_limits<int64_t>::max(), y0 = x0,
-          x1 = std::numeric_limits<int64_t>::min(), y1 = x1;
-  for (const auto& [k, c] : cells_) {
-    const int64_t ix = k >> 32, iy = static_cast<int32_t>(k & 0xffffffff);
-    x0 = std::min(x0, ix);
-    x1 = std::max(x1, ix);
-    y0 = std::min(y0, iy);
-    y1 = std::max(y1, iy);
+namespace {
+
+enum CellState : uint8_t { kUnknown = 0, kFree = 1, kOccupied = 2 };
+constexpr int kDx4[4] = {1, -1, 0, 0}, kDy4[4] = {0, 0, 1, -1};
+
+// The known cells as a dense grid: cell (x, y) is index y * w + x, at map cell (x0 + x, y0 + y).
+struct SliceGrid {
+  int64_t x0 = 0, y0 = 0;
+  int w = 0, h = 0;
+  std::vector<uint8_t> state;
+  std::vector<float> floor_z;
+
+  size_t size() const { return state.size(); }
+  bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < w && y < h; }
+  size_t at(int x, int y) const { return static_cast<size_t>(y) * w + x; }
+
+  // Calls fn(j) for the free 4-neighbours j of cell i.
+  template <class Fn>
+  void forFreeNeighbours(size_t i, const Fn& fn) const {
+    const int x = static_cast<int>(i % w), y = static_cast<int>(i / w);
+    for (int k = 0; k < 4; ++k) {
+      const int nx = x + kDx4[k], ny = y + kDy4[k];
+      if (!inside(nx, ny)) continue;
+      const size_t j = at(nx, ny);
+      if (state[j] == kFree) fn(j);
+    }
   }
-  const int w = static_cast<int>(x1 - x0 + 1), h = static_cast<int>(y1 - y0 + 1);
-  const size_t n = static_cast<size_t>(w) * h;
-  enum : uint8_t { kUnknown = 0, kFree = 1, kOccupied = 2 };
-  std::vector<uint8_t> state(n, kUnknown);
-  std::vector<float> floor_z(n, 0.0f);
-  for (const auto& [k, c] : cells_) {
-    const int64_t ix = k >> 32, iy = static_cast<int32_t>(k & 0xffffffff);
-    const size_t i = static_cast<size_t>(iy - y0) * w + (ix - x0);
-    state[i] = c.hits >= config_.min_hits ? kOccupied : (c.free > 0 ? kFree : kUnknown);
-    floor_z[i] = c.floor_z;
-  }
-  // Distance to the nearest occupied cell: two-pass chamfer (1, sqrt 2), in cells.
-  const float inf = std::numeric_limits<float>::infinity();
-  std::vector<float> dist(n, inf);
-  for (size_t i = 0; i < n; ++i) {
-    if (state[i] == kOccupied) dist[i] = 0.0f;
+};
+
+// Distance to the nearest occupied cell, in cells: two-pass chamfer (1, sqrt 2).
+std::vector<float> chamferDistance(const SliceGrid& g) {
+  std::vector<float> dist(g.size(), std::numeric_limits<float>::infinity());
+  for (size_t i = 0; i < g.size(); ++i) {
+    if (g.state[i] == kOccupied) dist[i] = 0.0f;
   }
   const float diag = std::sqrt(2.0f);
-  auto relax = [&](int x, int y, int dx, int dy, float cost) {
-    const int nx = x + dx, ny = y + dy;
-    if (nx < 0 || ny < 0 || nx >= w || ny >= h) return;
-    float& d = dist[static_cast<size_t>(y) * w + x];
-    d = std::min(d, dist[static_cast<size_t>(ny) * w + nx] + cost);
+  const auto relax = [&](int x, int y, int dx, int dy, float cost) {
+    if (!g.inside(x + dx, y + dy)) return;
+    float& d = dist[g.at(x, y)];
+    d = std::min(d, dist[g.at(x + dx, y + dy)] + cost);
   };
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
+  for (int y = 0; y < g.h; ++y) {
+    for (int x = 0; x < g.w; ++x) {
       relax(x, y, -1, 0, 1.f);
       relax(x, y, 0, -1, 1.f);
       relax(x, y, -1, -1, diag);
       relax(x, y, 1, -1, diag);
     }
   }
-  for (int y = h - 1; y >= 0; --y) {
-    for (int x = w - 1; x >= 0; --x) {
+  for (int y = g.h - 1; y >= 0; --y) {
+    for (int x = g.w - 1; x >= 0; --x) {
       relax(x, y, 1, 0, 1.f);
       relax(x, y, 0, 1, 1.f);
       relax(x, y, 1, 1, diag);
       relax(x, y, -1, 1, diag);
     }
   }
-  // Core cells (free, beyond the doorway clearance) -> 4-connected components.
-  const float clearance = static_cast<float>(config_.doorway_clearance / config_.resolution);
-  std::vector<int> label(n, -1);
-  std::vector<size_t> sizes;
-  const int dx4[4] = {1, -1, 0, 0}, dy4[4] = {0, 0, 1, -1};
-  for (size_t s = 0; s < n; ++s) {
-    if (state[s] != kFree || dist[s] <= clearance || label[s] >= 0) continue;
-    const int id = static_cast<int>(sizes.size());
+  return dist;
+}
+
+// Core cells (free, beyond `clearance` cells from an obstacle) -> 4-connected components:
+// a label per cell (-1: none) and the size of each component.
+std::vector<int> labelCores(const SliceGrid& g, const std::vector<float>& dist, float clearance,
+                            std::vector<size_t>* sizes) {
+  std::vector<int> label(g.size(), -1);
+  const auto isCore = [&](size_t i) { return dist[i] > clearance && label[i] < 0; };
+  for (size_t s = 0; s < g.size(); ++s) {
+    if (g.state[s] != kFree || !isCore(s)) continue;
+    const int id = static_cast<int>(sizes->size());
     std::vector<size_t> stack{s};
     label[s] = id;
     size_t count = 0;
@@ -149,60 +171,95 @@ std::vector<VoxelFreeSpace::Cluster> VoxelFreeSpace::clusters() const {
       const size_t i = stack.back();
       stack.pop_back();
       ++count;
-      const int x = static_cast<int>(i % w), y = static_cast<int>(i / w);
-      for (int k = 0; k < 4; ++k) {
-        const int nx = x + dx4[k], ny = y + dy4[k];
-        if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-        const size_t j = static_cast<size_t>(ny) * w + nx;
-        if (state[j] == kFree && dist[j] > clearance && label[j] < 0) {
-          label[j] = id;
-          stack.push_back(j);
-        }
-      }
+      g.forFreeNeighbours(i, [&](size_t j) {
+        if (!isCore(j)) return;
+        label[j] = id;
+        stack.push_back(j);
+      });
     }
-    sizes.push_back(count);
+    sizes->push_back(count);
   }
-  const double cell_area = config_.resolution * config_.resolution;
+  return label;
+}
+
+// Drops the components below `min_area` and gives the cut free cells to the nearest remaining
+// component (breadth-first over free cells), as S-Graphs+ re-attaches removed skeleton vertices.
+void growIntoCutCells(const SliceGrid& g, const std::vector<size_t>& sizes, double cell_area,
+                      double min_area, std::vector<int>* label) {
   std::deque<size_t> frontier;
-  for (size_t i = 0; i < n; ++i) {
-    if (label[i] < 0) continue;
-    if (sizes[label[i]] * cell_area < config_.min_cluster_area) {
-      label[i] = -1;
+  for (size_t i = 0; i < g.size(); ++i) {
+    if ((*label)[i] < 0) continue;
+    if (sizes[(*label)[i]] * cell_area < min_area) {
+      (*label)[i] = -1;
     } else {
       frontier.push_back(i);
     }
   }
-  // Cut free cells go to the nearest cluster (breadth-first over free cells).
   while (!frontier.empty()) {
     const size_t i = frontier.front();
     frontier.pop_front();
-    const int x = static_cast<int>(i % w), y = static_cast<int>(i / w);
-    for (int k = 0; k < 4; ++k) {
-      const int nx = x + dx4[k], ny = y + dy4[k];
-      if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-      const size_t j = static_cast<size_t>(ny) * w + nx;
-      if (state[j] == kFree && label[j] < 0) {
-        label[j] = label[i];
-        frontier.push_back(j);
-      }
-    }
+    g.forFreeNeighbours(i, [&](size_t j) {
+      if ((*label)[j] >= 0) return;
+      (*label)[j] = (*label)[i];
+      frontier.push_back(j);
+    });
   }
-  std::vector<int> index(sizes.size(), -1);
-  for (size_t i = 0; i < n; ++i) {
+}
+
+// The cells (VoxelFreeSpace::cells_, keyed by key(ix, iy)) as a dense grid; a cell with
+// `min_hits` returns is occupied, else free when a ray crossed it.
+template <class Cells>
+SliceGrid rasterize(const Cells& cells, int min_hits) {
+  SliceGrid g;
+  int64_t x1 = std::numeric_limits<int64_t>::min(), y1 = x1;
+  g.x0 = g.y0 = std::numeric_limits<int64_t>::max();
+  for (const auto& [k, c] : cells) {
+    const int64_t ix = k >> 32, iy = static_cast<int32_t>(k & 0xffffffff);
+    g.x0 = std::min(g.x0, ix);
+    x1 = std::max(x1, ix);
+    g.y0 = std::min(g.y0, iy);
+    y1 = std::max(y1, iy);
+  }
+  g.w = static_cast<int>(x1 - g.x0 + 1);
+  g.h = static_cast<int>(y1 - g.y0 + 1);
+  g.state.assign(static_cast<size_t>(g.w) * g.h, kUnknown);
+  g.floor_z.assign(g.state.size(), 0.0f);
+  for (const auto& [k, c] : cells) {
+    const int64_t ix = k >> 32, iy = static_cast<int32_t>(k & 0xffffffff);
+    const size_t i = g.at(static_cast<int>(ix - g.x0), static_cast<int>(iy - g.y0));
+    g.state[i] = c.hits >= min_hits ? kOccupied : (c.free > 0 ? kFree : kUnknown);
+    g.floor_z[i] = c.floor_z;
+  }
+  return g;
+}
+
+}  // namespace
+
+std::vector<VoxelFreeSpace::Cluster> VoxelFreeSpace::clusters() const {
+  std::vector<Cluster> out;
+  if (cells_.empty()) return out;
+  const SliceGrid g = rasterize(cells_, config_.min_hits);
+  const float clearance = static_cast<float>(config_.doorway_clearance / config_.resolution);
+  std::vector<size_t> sizes;
+  std::vector<int> label = labelCores(g, chamferDistance(g), clearance, &sizes);
+  const double r = config_.resolution;
+  growIntoCutCells(g, sizes, r * r, config_.min_cluster_area, &label);
+
+  std::vector<int> index(sizes.size(), -1);  // component -> cluster in `out`
+  for (size_t i = 0; i < g.size(); ++i) {
     if (label[i] < 0) continue;
     if (index[label[i]] < 0) {
       index[label[i]] = static_cast<int>(out.size());
       out.emplace_back();
     }
-    const double r = config_.resolution;
-    out[index[label[i]]].points.emplace_back((x0 + static_cast<double>(i % w) + 0.5) * r,
-                                             (y0 + static_cast<double>(i / w) + 0.5) * r,
-                                             floor_z[i]);
+    out[index[label[i]]].points.emplace_back((g.x0 + static_cast<double>(i % g.w) + 0.5) * r,
+                                             (g.y0 + static_cast<double>(i / g.w) + 0.5) * r,
+                                             g.floor_z[i]);
   }
   for (const auto& [id, p] : keyframes_) {
-    const int64_t ix = cellIndex(p.x()) - x0, iy = cellIndex(p.y()) - y0;
-    if (ix < 0 || iy < 0 || ix >= w || iy >= h) continue;
-    const int l = label[static_cast<size_t>(iy) * w + ix];
+    const int64_t ix = cellIndex(p.x()) - g.x0, iy = cellIndex(p.y()) - g.y0;
+    if (ix < 0 || iy < 0 || ix >= g.w || iy >= g.h) continue;
+    const int l = label[g.at(static_cast<int>(ix), static_cast<int>(iy))];
     if (l >= 0 && index[l] >= 0) out[index[l]].keyframe_ids.push_back(id);
   }
   std::stable_sort(out.begin(), out.end(), [](const Cluster& a, const Cluster& b) {

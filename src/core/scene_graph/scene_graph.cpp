@@ -147,6 +147,87 @@ json SceneGraph::toJson() const {
   return j;
 }
 
+namespace {
+
+// One parser per node kind of fromJson(); `p` names the element in errors ("walls[3]").
+KeyframeNode keyframeFromJson(const json& k, const std::string& p) {
+  KeyframeNode kf;
+  kf.id = index(field(k, "id", p), p + ".id");
+  kf.stamp = number(field(k, "stamp", p), p + ".stamp");
+  kf.position = vector<3>(field(k, "position", p), p + ".position");
+  kf.orientation = quaternion(field(k, "orientation", p), p + ".orientation");
+  const json& room = field(k, "room_id", p);
+  if (!room.is_number_integer()) throw std::runtime_error(p + ".room_id: expected an integer");
+  kf.room_id = room.get<int>();
+  return kf;
+}
+
+WallNode wallFromJson(const json& wall, const std::string& p) {
+  WallNode w;
+  w.id = index(field(wall, "id", p), p + ".id");
+  w.normal = vector<3>(field(wall, "normal", p), p + ".normal");
+  w.d = number(field(wall, "d", p), p + ".d");
+  const json& ends = field(wall, "endpoints", p);
+  if (!ends.is_array() || ends.size() != 2) {
+    throw std::runtime_error(p + ".endpoints: expected [[x, y], [x, y]]");
+  }
+  w.endpoints[0] = vector<2>(ends[0], p + ".endpoints[0]");
+  w.endpoints[1] = vector<2>(ends[1], p + ".endpoints[1]");
+  const Eigen::Vector2d z = vector<2>(field(wall, "z_range", p), p + ".z_range");
+  w.z_range = {z[0], z[1]};
+  // Optional: graphs saved before surfaces were told apart hold walls only.
+  if (wall.contains("is_wall")) {
+    if (!wall["is_wall"].is_boolean()) throw std::runtime_error(p + ".is_wall: expected a boolean");
+    w.is_wall = wall["is_wall"].get<bool>();
+  }
+  return w;
+}
+
+RoomNode roomFromJson(const json& room, const std::string& p) {
+  RoomNode r;
+  r.id = index(field(room, "id", p), p + ".id");
+  const json& kind = field(room, "kind", p);
+  if (kind == "room") {
+    r.kind = RoomKind::kRoom;
+  } else if (kind == "corridor") {
+    r.kind = RoomKind::kCorridor;
+  } else {
+    throw std::runtime_error(p + ".kind: expected \"room\" or \"corridor\", got " + kind.dump());
+  }
+  r.center = vector<3>(field(room, "center", p), p + ".center");
+  r.wall_ids = indices(field(room, "wall_ids", p), p + ".wall_ids");
+  const json& fs = array(room, "free_space", p);
+  for (size_t k = 0; k < fs.size(); ++k) {
+    r.free_space.push_back(vector<2>(fs[k], p + ".free_space[" + std::to_string(k) + "]"));
+  }
+  r.keyframe_ids = indices(field(room, "keyframe_ids", p), p + ".keyframe_ids");
+  return r;
+}
+
+LoopEdge loopFromJson(const json& loop, const std::string& p) {
+  LoopEdge l;
+  l.from = index(field(loop, "from", p), p + ".from");
+  l.to = index(field(loop, "to", p), p + ".to");
+  const json& rel = field(loop, "relative_pose", p);
+  l.position =
+      vector<3>(field(rel, "position", p + ".relative_pose"), p + ".relative_pose.position");
+  l.orientation =
+      quaternion(field(rel, "orientation", p + ".relative_pose"), p + ".relative_pose.orientation");
+  l.score = number(field(loop, "score", p), p + ".score");
+  return l;
+}
+
+// Calls parse(element, "<key>[i]") for each element of the array j[key].
+template <class Parse>
+void forEachIn(const json& j, const std::string& key, const Parse& parse) {
+  const json& elements = array(j, key.c_str(), "");
+  for (size_t i = 0; i < elements.size(); ++i) {
+    parse(elements[i], key + "[" + std::to_string(i) + "]");
+  }
+}
+
+}  // namespace
+
 SceneGraph SceneGraph::fromJson(const json& j) {
   if (!j.is_object() || j.value("format", "") != kFormat) {
     throw std::runtime_error(std::string("format: expected \"") + kFormat + "\"");
@@ -155,78 +236,20 @@ SceneGraph SceneGraph::fromJson(const json& j) {
     throw std::runtime_error("version: expected " + std::to_string(kVersion));
   }
   SceneGraph g;
-  const json& kfs = array(j, "keyframes", "");
-  for (size_t i = 0; i < kfs.size(); ++i) {
-    const std::string p = "keyframes[" + std::to_string(i) + "]";
-    KeyframeNode kf;
-    kf.id = index(field(kfs[i], "id", p), p + ".id");
-    kf.stamp = number(field(kfs[i], "stamp", p), p + ".stamp");
-    kf.position = vector<3>(field(kfs[i], "position", p), p + ".position");
-    kf.orientation = quaternion(field(kfs[i], "orientation", p), p + ".orientation");
-    const json& room = field(kfs[i], "room_id", p);
-    if (!room.is_number_integer()) throw std::runtime_error(p + ".room_id: expected an integer");
-    kf.room_id = room.get<int>();
+  forEachIn(j, "keyframes", [&](const json& e, const std::string& p) {
+    const KeyframeNode kf = keyframeFromJson(e, p);
     g.keyframes[kf.id] = kf;
-  }
-  const json& walls = array(j, "walls", "");
-  for (size_t i = 0; i < walls.size(); ++i) {
-    const std::string p = "walls[" + std::to_string(i) + "]";
-    WallNode w;
-    w.id = index(field(walls[i], "id", p), p + ".id");
-    w.normal = vector<3>(field(walls[i], "normal", p), p + ".normal");
-    w.d = number(field(walls[i], "d", p), p + ".d");
-    const json& ends = field(walls[i], "endpoints", p);
-    if (!ends.is_array() || ends.size() != 2) {
-      throw std::runtime_error(p + ".endpoints: expected [[x, y], [x, y]]");
-    }
-    w.endpoints[0] = vector<2>(ends[0], p + ".endpoints[0]");
-    w.endpoints[1] = vector<2>(ends[1], p + ".endpoints[1]");
-    const Eigen::Vector2d z = vector<2>(field(walls[i], "z_range", p), p + ".z_range");
-    w.z_range = {z[0], z[1]};
-    // Optional: graphs saved before surfaces were told apart hold walls only.
-    if (walls[i].contains("is_wall")) {
-      if (!walls[i]["is_wall"].is_boolean())
-        throw std::runtime_error(p + ".is_wall: expected a boolean");
-      w.is_wall = walls[i]["is_wall"].get<bool>();
-    }
+  });
+  forEachIn(j, "walls", [&](const json& e, const std::string& p) {
+    const WallNode w = wallFromJson(e, p);
     g.walls[w.id] = w;
-  }
-  const json& rooms = array(j, "rooms", "");
-  for (size_t i = 0; i < rooms.size(); ++i) {
-    const std::string p = "rooms[" + std::to_string(i) + "]";
-    RoomNode r;
-    r.id = index(field(rooms[i], "id", p), p + ".id");
-    const json& kind = field(rooms[i], "kind", p);
-    if (kind == "room") {
-      r.kind = RoomKind::kRoom;
-    } else if (kind == "corridor") {
-      r.kind = RoomKind::kCorridor;
-    } else {
-      throw std::runtime_error(p + ".kind: expected \"room\" or \"corridor\", got " + kind.dump());
-    }
-    r.center = vector<3>(field(rooms[i], "center", p), p + ".center");
-    r.wall_ids = indices(field(rooms[i], "wall_ids", p), p + ".wall_ids");
-    const json& fs = array(rooms[i], "free_space", p);
-    for (size_t k = 0; k < fs.size(); ++k) {
-      r.free_space.push_back(vector<2>(fs[k], p + ".free_space[" + std::to_string(k) + "]"));
-    }
-    r.keyframe_ids = indices(field(rooms[i], "keyframe_ids", p), p + ".keyframe_ids");
+  });
+  forEachIn(j, "rooms", [&](const json& e, const std::string& p) {
+    const RoomNode r = roomFromJson(e, p);
     g.rooms[r.id] = r;
-  }
-  const json& loops = array(j, "loops", "");
-  for (size_t i = 0; i < loops.size(); ++i) {
-    const std::string p = "loops[" + std::to_string(i) + "]";
-    LoopEdge l;
-    l.from = index(field(loops[i], "from", p), p + ".from");
-    l.to = index(field(loops[i], "to", p), p + ".to");
-    const json& rel = field(loops[i], "relative_pose", p);
-    l.position =
-        vector<3>(field(rel, "position", p + ".relative_pose"), p + ".relative_pose.position");
-    l.orientation = quaternion(field(rel, "orientation", p + ".relative_pose"),
-                               p + ".relative_pose.orientation");
-    l.score = number(field(loops[i], "score", p), p + ".score");
-    g.loops.push_back(l);
-  }
+  });
+  forEachIn(j, "loops",
+            [&](const json& e, const std::string& p) { g.loops.push_back(loopFromJson(e, p)); });
   if (j.contains("input")) {
     const json& in = j.at("input");
     ScanInput s;
