@@ -117,8 +117,6 @@ BackendSession::Outcome BackendSession::addKeyframe(uint32_t id, double stamp,
   backend_.addKeyframe(id, stamp, T_odom_base, information);
   clouds_.add(id, cloud, backend_);
   newest_keyframe_ = std::max(newest_keyframe_, id);
-  keyframe_ids_.insert(id);
-  if (walls_taken_.count(id) == 0) keyframes_without_walls_.insert(id);
   const nlohmann::json entry = {{"id", id},
                                 {"stamp", stamp},
                                 {"odom_pose", poseToJson(T_odom_base)},
@@ -141,7 +139,6 @@ BackendSession::Outcome BackendSession::addWalls(uint32_t keyframe_id, const Key
     return Outcome::kBuffered;
   }
   if (!walls_taken_.insert(keyframe_id).second) return Outcome::kDuplicate;
-  keyframes_without_walls_.erase(keyframe_id);
   if (walls.walls.empty() && walls.seen_over.empty()) return Outcome::kAdded;
   backend_.addWallObservations(keyframe_id, walls.walls, walls.seen_over);
   nlohmann::json entry = {{"keyframe", keyframe_id}, {"walls", nlohmann::json::array()}};
@@ -212,17 +209,20 @@ size_t BackendSession::retainRooms(const std::set<uint32_t>& ids) {
 }
 
 uint32_t BackendSession::firstIncompleteKeyframe() const {
-  for (uint32_t id : keyframes_without_walls_) {
-    // Walls older than the pending window would be dropped anyway.
-    if (id + options_.max_pending_keyframes >= newest_keyframe_) return id;
+  if (keyframeCount() == 0) return 0;
+  // Walls older than the pending window would be dropped anyway.
+  const uint32_t window = static_cast<uint32_t>(options_.max_pending_keyframes);
+  const uint32_t oldest = newest_keyframe_ > window ? newest_keyframe_ - window : 0;
+  for (uint32_t id = oldest; id <= newest_keyframe_; ++id) {
+    if (backend_.hasKeyframe(id) && walls_taken_.count(id) == 0) return id;
   }
-  return keyframe_ids_.empty() ? 0 : newest_keyframe_ + 1;
+  return newest_keyframe_ + 1;
 }
 
 std::vector<uint32_t> BackendSession::missingKeyframes() const {
   std::vector<uint32_t> missing;
   for (uint32_t id = 0; id < newest_keyframe_; ++id) {
-    if (keyframe_ids_.count(id) == 0) missing.push_back(id);
+    if (!backend_.hasKeyframe(id)) missing.push_back(id);
   }
   return missing;
 }

@@ -206,8 +206,8 @@ void GicpOdometryNode::publish(const OdometryResult& result,
                     *result.keyframe_cloud, sensor_in_base, f.odom_frame, f.base_frame);
   msg.scans_received = static_cast<uint32_t>(overload_.arrivedTotal());
   msg.scans_missing = static_cast<uint32_t>(scan_gaps_.missingTotal());
-  keyframe_pub_.publish(msg);
-  sent_keyframes_->keep(msg.id, msg);
+  const uint32_t id = msg.id;
+  keyframe_pub_.publish(sent_keyframes_->keep(id, std::move(msg)));
 }
 
 }  // namespace tacs

@@ -55,10 +55,8 @@ void TraversabilityNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr&
   ++processed_;
   if (levelled) result.graph = result.graph.transformed(T_base_ground);
   const std::string& odom = config_.frames.odom_frame;
-  const tacs_graphs::TraversableGraph graph_msg = toTraversableGraphMsg(
-      result.graph, kf.id, kf.T_odom_base, config_.frames.base_frame, kf.stamp);
-  graph_pub_.publish(graph_msg);
-  sent_.keep(kf.id, graph_msg);
+  graph_pub_.publish(sent_.keep(kf.id, toTraversableGraphMsg(result.graph, kf.id, kf.T_odom_base,
+                                                             config_.frames.base_frame, kf.stamp)));
   const Eigen::Matrix4f T = (kf.T_odom_base * T_base_ground).matrix().cast<float>();
   if (ground_pub_.getNumSubscribers() > 0 && result.ground) {
     PointCloud ground;

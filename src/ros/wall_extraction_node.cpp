@@ -53,8 +53,7 @@ void WallExtractionNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr&
   out.seen_over.reserve(result.seen_over.size());
   for (const WallSegment& w : result.seen_over) out.seen_over.push_back(toWallObservationMsg(w));
   // Published even when empty: the backend then knows this keyframe's walls are complete.
-  walls_pub_.publish(out);
-  sent_.keep(kf.id, out);
+  walls_pub_.publish(sent_.keep(kf.id, std::move(out)));
 }
 
 }  // namespace tacs

@@ -113,8 +113,6 @@ class BackendSession {
   std::vector<std::pair<LoopEdge, Matrix6d>> pending_loops_;
   std::map<uint32_t, nlohmann::json> journal_rooms_;  // latest version of each room, by id
   std::map<uint32_t, std::set<std::pair<uint32_t, uint32_t>>> wall_to_wall_;  // by room id
-  std::set<uint32_t> keyframe_ids_;
-  std::set<uint32_t> keyframes_without_walls_;
   std::set<uint32_t> walls_taken_;  // keyframes whose walls were added (even none)
   std::set<std::pair<uint32_t, uint32_t>> loops_taken_;
   uint32_t newest_keyframe_ = 0;

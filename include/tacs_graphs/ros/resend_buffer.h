@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 
 namespace tacs {
 
@@ -33,10 +34,13 @@ class ResendBuffer {
   /// Keeps the newest `capacity` messages (0: none, resending is off).
   ResendBuffer(size_t capacity, std::string what) : capacity_(capacity), what_(std::move(what)) {}
 
-  void keep(uint32_t keyframe_id, const Message& msg) {
-    if (capacity_ == 0) return;
-    kept_[keyframe_id] = boost::make_shared<const Message>(msg);
+  /// Takes the message to publish and keeps it: publish the returned pointer (no copy).
+  boost::shared_ptr<const Message> keep(uint32_t keyframe_id, Message msg) {
+    auto kept = boost::make_shared<const Message>(std::move(msg));
+    if (capacity_ == 0) return kept;
+    kept_[keyframe_id] = kept;
     while (kept_.size() > capacity_) kept_.erase(kept_.begin());
+    return kept;
   }
 
   bool has(uint32_t keyframe_id) const { return kept_.count(keyframe_id) > 0; }
