@@ -167,10 +167,10 @@ void BackendNode::roomsCallback(const tacs_graphs::RoomObservations::ConstPtr& m
     changed_ = session_->retainRooms(ids) > 0 || changed_;
   }
   for (const auto& r : msg->rooms) {
-    // Rooms merged into this one leave the graph even if this one cannot be stored yet.
-    for (uint32_t absorbed : r.absorbed_room_ids) session_->removeRoom(absorbed);
     changed_ = changed_ || !r.absorbed_room_ids.empty();
-    if (session_->setRoom(fromRoomObservationMsg(r), wallToWallPairs(r))) {
+    if (session_->takeRoom(fromRoomObservationMsg(r),
+                           {r.absorbed_room_ids.begin(), r.absorbed_room_ids.end()},
+                           wallToWallPairs(r))) {
       changed_ = true;
     } else {
       warnings_.warn("room observation", "no facing wall pair in the graph, room not updated");

@@ -50,7 +50,8 @@ WallSegment fromWallObservationMsg(const tacs_graphs::WallObservation& msg) {
 
 tacs_graphs::TraversableGraph toTraversableGraphMsg(const TravGraph& graph, uint32_t keyframe_id,
                                                     const Pose3& T_odom_base,
-                                                    const std::string& base_frame, double stamp) {
+                                                    const std::string& base_frame, double stamp,
+                                                    const Pose3& T_base_ground) {
   tacs_graphs::TraversableGraph msg;
   msg.header.stamp.fromSec(stamp);
   msg.header.frame_id = base_frame;
@@ -58,6 +59,7 @@ tacs_graphs::TraversableGraph toTraversableGraphMsg(const TravGraph& graph, uint
   // The message field is unsigned: a graph without a root points past the node list.
   msg.root_index = graph.root >= 0 ? static_cast<uint32_t>(graph.root) : graph.nodes.size();
   msg.odom_pose = toPoseMsg(T_odom_base);
+  msg.ground_in_base = toPoseMsg(T_base_ground);
   msg.nodes.reserve(graph.nodes.size());
   for (const TravNode& n : graph.nodes) {
     tacs_graphs::TraversableNode m;

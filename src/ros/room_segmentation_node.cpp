@@ -82,12 +82,13 @@ void RoomSegmentationNode::graphCallback(const tacs_graphs::TraversableGraph::Co
   newest_input_id_ = msg->keyframe_id;
   journal_->record(kGraphChannel, *msg);
   const Pose3 T_odom_base = fromPoseMsg(msg->odom_pose);
-  if (!T_odom_base.matrix().allFinite()) {
-    warnings_.warn("traversable graph", "non-finite odometry pose, skipped");
+  const Pose3 T_base_ground = fromPoseMsg(msg->ground_in_base);
+  if (!T_odom_base.matrix().allFinite() || !T_base_ground.matrix().allFinite()) {
+    warnings_.warn("traversable graph", "non-finite odometry or ground pose, skipped");
     return;
   }
   session_->addGraph(msg->keyframe_id, msg->header.stamp.toSec(), T_odom_base,
-                     fromTraversableGraphMsg(*msg));
+                     fromTraversableGraphMsg(*msg), T_base_ground);
   if (!journal_->replaying()) processReady();
 }
 

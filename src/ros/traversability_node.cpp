@@ -16,6 +16,7 @@ namespace tacs {
 TraversabilityNode::TraversabilityNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
     : config_(loadPipelineConfigFromRos(nh, pnh.param<std::string>("config_ns", "/tacs"))),
       mapper_(config_.traversability),
+      leveller_(nh, config_.traversability.find_floor_under_base),
       sent_(static_cast<size_t>(boundedParam(pnh, "resend_capacity", 100, 0, true)), "graphs") {
   graph_pub_ = nh.advertise<tacs_graphs::TraversableGraph>("/tacs/traversable_graph", 100);
   ground_pub_ = nh.advertise<sensor_msgs::PointCloud2>("/tacs/ground_points", 5);
@@ -40,24 +41,18 @@ void TraversabilityNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr&
   if (static_cast<int64_t>(kf.id) <= newest_id_) return;
   newest_id_ = kf.id;
   // A base off the floor (hand-held): the terrain is read in the levelled floor frame under it
-  // (docs/DESIGN.md, frames) and its graph handed on in the base frame, as the pipeline does.
-  Pose3 T_base_ground = Pose3::Identity();
-  PointCloud in_ground;
-  if (config_.traversability.find_floor_under_base) {
-    T_base_ground = floor_tracker_.next(*kf.cloud, kf.T_odom_base).T_base_floor;
-    pcl::transformPointCloud(*kf.cloud, in_ground, T_base_ground.inverse().matrix().cast<float>());
-  }
-  const bool levelled = config_.traversability.find_floor_under_base;
-  TraversabilityResult result = mapper_.process(levelled ? in_ground : *kf.cloud);
+  // (docs/DESIGN.md, frames), and its graph handed on in that frame.
+  const LevelledKeyframe levelled = leveller_.level(kf);
+  const TraversabilityResult result = keyframeTraversability(mapper_, levelled);
   if (!result.warning.empty()) {
     warnings_.warn("traversability", WarnOnce::reasonKey(result.warning), result.warning);
   }
   ++processed_;
-  if (levelled) result.graph = result.graph.transformed(T_base_ground);
   const std::string& odom = config_.frames.odom_frame;
-  graph_pub_.publish(sent_.keep(kf.id, toTraversableGraphMsg(result.graph, kf.id, kf.T_odom_base,
-                                                             config_.frames.base_frame, kf.stamp)));
-  const Eigen::Matrix4f T = (kf.T_odom_base * T_base_ground).matrix().cast<float>();
+  graph_pub_.publish(sent_.keep(
+      kf.id, toTraversableGraphMsg(result.graph, kf.id, kf.T_odom_base, config_.frames.base_frame,
+                                   kf.stamp, levelled.T_base_ground)));
+  const Eigen::Matrix4f T = (kf.T_odom_base * levelled.T_base_ground).matrix().cast<float>();
   if (ground_pub_.getNumSubscribers() > 0 && result.ground) {
     PointCloud ground;
     pcl::transformPointCloud(*result.ground, ground, T);
@@ -69,8 +64,8 @@ void TraversabilityNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr&
     obstacle_pub_.publish(toRosCloud(obstacles, odom, kf.stamp));
   }
   if (marker_pub_.getNumSubscribers() > 0) {
-    marker_pub_.publish(
-        traversableGraphMarker(result.graph, kf.T_odom_base, kf.id, odom, kf.stamp));
+    marker_pub_.publish(traversableGraphMarker(
+        result.graph, kf.T_odom_base * levelled.T_base_ground, kf.id, odom, kf.stamp));
   }
 }
 

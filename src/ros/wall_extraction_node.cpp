@@ -1,6 +1,5 @@
 #include "tacs_graphs/ros/wall_extraction_node.h"
 
-#include <pcl/common/transforms.h>
 #include <tacs_graphs/WallObservations.h>
 
 #include "tacs_graphs/ros/graph_messages.h"
@@ -12,6 +11,7 @@ namespace tacs {
 WallExtractionNode::WallExtractionNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
     : config_(loadPipelineConfigFromRos(nh, pnh.param<std::string>("config_ns", "/tacs"))),
       extractor_(config_.walls.extraction),
+      leveller_(nh, config_.traversability.find_floor_under_base),
       sent_(static_cast<size_t>(boundedParam(pnh, "resend_capacity", 100, 0, true)), "walls") {
   walls_pub_ = nh.advertise<tacs_graphs::WallObservations>("/tacs/wall_observations", 100);
   keyframe_sub_ = nh.subscribe("/tacs/keyframe", 1000, &WallExtractionNode::keyframeCallback, this,
@@ -32,17 +32,8 @@ void WallExtractionNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr&
   // A keyframe resent for a restarted node: its walls go out again from sent_ on the Resync.
   if (static_cast<int64_t>(kf.id) <= newest_id_) return;
   newest_id_ = kf.id;
-  // Seen from the sensor: the low-surface and seen-over tests measure rays from there. A base off
-  // the floor (hand-held) is read in the levelled floor frame, as the pipeline does.
-  WallExtractionResult result;
-  if (config_.traversability.find_floor_under_base) {
-    const Pose3 T_base_floor = floor_tracker_.next(*kf.cloud, kf.T_odom_base).T_base_floor;
-    PointCloud levelled;
-    pcl::transformPointCloud(*kf.cloud, levelled, T_base_floor.inverse().matrix().cast<float>());
-    result = extractor_.extractInFrame(levelled, T_base_floor, kf.sensor_in_base);
-  } else {
-    result = extractor_.extract(*kf.cloud, kf.sensor_in_base);
-  }
+  const WallExtractionResult result =
+      extractKeyframeWalls(extractor_, leveller_.level(kf), kf.sensor_in_base);
   ++processed_;
   tacs_graphs::WallObservations out;
   out.header.stamp = msg->header.stamp;

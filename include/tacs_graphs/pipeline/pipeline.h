@@ -1,8 +1,10 @@
 // The whole SLAM pipeline run synchronously in one thread of control, as tacs_offline and the
-// evaluation use it (the same core classes the ROS nodes run, docs/DESIGN.md "Two ways to run the
-// same core"). Per keyframe: traversability -> traversable map, walls -> backend landmarks, room
-// segmentation -> backend rooms, loop detection (CoSG-LCD on a re-detected room, or the distance
-// baseline) -> backend loops, then the scheduled optimisation. Deterministic for a given input.
+// evaluation use it: the stage sessions the ROS nodes run one per process (keyframe_stages.h,
+// BackendSession, RoomSegmentationSession, LoopClosureSession), composed here in one process
+// (docs/DESIGN.md "One wiring"). Per keyframe: backend keyframe, walls -> backend landmarks,
+// traversability -> room segmentation -> backend rooms, loop detection (CoSG-LCD on a re-detected
+// room, or the distance baseline) -> backend loops, then the scheduled optimisation.
+// Deterministic for a given input.
 #pragma once
 
 #include <cstdint>
@@ -11,17 +13,14 @@
 #include <optional>
 #include <string>
 
-#include "tacs_graphs/backend/backend.h"
-#include "tacs_graphs/backend/map_export.h"
 #include "tacs_graphs/common/timing.h"
-#include "tacs_graphs/loop_closure/loop_detector.h"
 #include "tacs_graphs/odometry/external_odometry.h"
 #include "tacs_graphs/odometry/lidar_odometry.h"
+#include "tacs_graphs/pipeline/backend_session.h"
+#include "tacs_graphs/pipeline/keyframe_stages.h"
+#include "tacs_graphs/pipeline/loop_closure_session.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
-#include "tacs_graphs/rooms/room_segmenter.h"
-#include "tacs_graphs/traversability/floor_frame.h"
-#include "tacs_graphs/traversability/traversable_map.h"
-#include "tacs_graphs/walls/wall_extractor.h"
+#include "tacs_graphs/pipeline/room_segmentation_session.h"
 
 namespace tacs {
 
@@ -80,47 +79,37 @@ class Pipeline {
   /// Optimised keyframe poses in the map frame, by stamp.
   Trajectory keyframeTrajectory() const;
   SceneGraph sceneGraph() const { return backend_.sceneGraph(); }
-  const Backend& backend() const { return backend_; }
-  const KeyframeClouds& keyframeClouds() const { return map_clouds_.clouds(); }
+  const Backend& backend() const { return backend_.backend(); }
+  const KeyframeClouds& keyframeClouds() const { return backend_.keyframeClouds(); }
   const StageTimes& stageTimes() const { return stage_times_; }
   /// Total backend optimisation time (t_FGO) and loop-detection time (t_LD) in seconds.
-  double fgoSeconds() const { return backend_.totalOptimizationMs() / 1e3; }
-  double ldSeconds() const { return loop_detector_.stats().total_ms / 1e3; }
-  const LoopDetector& loopDetector() const { return loop_detector_; }
-  const TraversableMap& traversableMap() const { return traversable_map_; }
+  double fgoSeconds() const { return backend().totalOptimizationMs() / 1e3; }
+  double ldSeconds() const { return loops_.detector().stats().total_ms / 1e3; }
+  const LoopDetector& loopDetector() const { return loops_.detector(); }
+  const TraversableMap& traversableMap() const { return rooms_.traversableMap(); }
 
  private:
   void processKeyframe(const OdometryResult& odom, ScanOutcome* outcome);
-  /// Hands rooms to the backend; a room re-detection triggers CoSG-LCD (Sec. III-D).
-  void applyRooms(const RoomSegmentationResult& result, uint32_t query_keyframe,
-                  ScanOutcome* outcome);
-  void applyLoops(const LoopDetection& detection, ScanOutcome* outcome);
-  /// Optimised poses back into the traversable map and the loop detector.
-  void propagatePoses(bool rebuild_traversable_map);
-  /// The keyframe's ground frame in the map: the base itself, or the floor frame under it
-  /// (traversability.find_floor_under_base).
-  Pose3 groundPose(uint32_t id) const;
-  /// Walls of the keyframe in its base frame, extracted from its ground-frame cloud.
-  WallExtractionResult extractWalls(uint32_t id, const PointCloud& ground_cloud);
+  /// Hands updated rooms to the backend; a room re-detection triggers CoSG-LCD (Sec. III-D).
+  void applyRooms(const RoomUpdate& update, ScanOutcome* outcome);
+  void applyLoops(const std::vector<RoomLoopDetection>& detections, ScanOutcome* outcome);
+  /// The backend's current keyframe poses (map frame).
+  std::map<uint32_t, Pose3> keyframePoses() const;
 
   PipelineConfig config_;
   LidarOdometry odometry_estimator_;
   std::unique_ptr<ExternalOdometry> given_poses_;  // set: odometry from given poses
+  Eigen::Vector3d sensor_in_base_;                 // wall extraction's viewpoint
+  GroundLeveller leveller_;
   WallExtractor wall_extractor_;
-  Eigen::Vector3d sensor_in_base_;  // wall extraction's viewpoint
   TraversabilityMapper traversability_mapper_;
-  TraversableMap traversable_map_;
-  RoomSegmenter room_segmenter_;
-  LoopDetector loop_detector_;
-  Backend backend_;
-  std::vector<uint32_t> keyframe_ids_;       // in arrival (= stamp) order
-  std::map<uint32_t, Pose3> base_to_floor_;  // find_floor_under_base: T_base_floor per keyframe
-  FloorTracker floor_tracker_;               // ... and where the floor was last seen
+  BackendSession backend_;
+  RoomSegmentationSession rooms_;
+  LoopClosureSession loops_;
+  std::vector<uint32_t> keyframe_ids_;  // in arrival (= stamp) order
   std::vector<double> keyframe_stamps_;
-  bool loop_since_pose_update_ = false;
   PipelineStats stats_;
   Trajectory odometry_;
-  MapClouds map_clouds_;
   StageTimes stage_times_;
 };
 

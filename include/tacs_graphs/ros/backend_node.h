@@ -35,8 +35,8 @@
 #include <string>
 
 #include "tacs_graphs/backend/map_export.h"
+#include "tacs_graphs/pipeline/backend_session.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
-#include "tacs_graphs/ros/backend_session.h"
 #include "tacs_graphs/ros/message_journal.h"
 #include "tacs_graphs/ros/warn_once.h"
 

@@ -36,8 +36,8 @@
 #include "tacs_graphs/odometry/external_odometry.h"
 #include "tacs_graphs/odometry/lidar_odometry.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
+#include "tacs_graphs/pipeline/scan_gap_monitor.h"
 #include "tacs_graphs/ros/resend_buffer.h"
-#include "tacs_graphs/ros/scan_gap_monitor.h"
 #include "tacs_graphs/ros/warn_once.h"
 
 namespace tacs {

@@ -35,12 +35,14 @@ tacs_graphs::Keyframe toKeyframeMsg(uint32_t id, double stamp, const Pose3& T_od
 tacs_graphs::WallObservation toWallObservationMsg(const WallSegment& wall);
 WallSegment fromWallObservationMsg(const tacs_graphs::WallObservation& msg);
 
-/// The per-keyframe traversable graph (base frame) with its keyframe id and odometry pose.
+/// The per-keyframe traversable graph (in the ground frame T_base_ground of the keyframe) with
+/// its keyframe id and odometry pose.
 tacs_graphs::TraversableGraph toTraversableGraphMsg(const TravGraph& graph, uint32_t keyframe_id,
                                                     const Pose3& T_odom_base,
-                                                    const std::string& base_frame, double stamp);
-/// The traversable graph of a keyframe (base frame), node flags `traversable` and `safe` included:
-/// the TraversableMap builds free space from them.
+                                                    const std::string& base_frame, double stamp,
+                                                    const Pose3& T_base_ground = Pose3::Identity());
+/// The traversable graph of a keyframe (ground frame, the message's ground_in_base), node flags
+/// `traversable` and `safe` included: the TraversableMap builds free space from them.
 TravGraph fromTraversableGraphMsg(const tacs_graphs::TraversableGraph& msg);
 
 /// A mapped room of the room segmenter and what room merging did with the observation that

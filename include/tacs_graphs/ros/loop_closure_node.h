@@ -1,5 +1,5 @@
 // The loop_closure node: keyframes (clouds), the backend's scene graph (pose estimates) and room
-// observations -> LoopDetector -> /tacs/loop_closures.
+// observations -> LoopClosureSession (LoopDetector) -> /tacs/loop_closures.
 //
 // loop_closure.method "cosg" (paper Sec. III-D, CoSG-LCD): a room observation marked as a
 // re-detection searches that room's keyframes for a loop with the observation's query keyframe
@@ -23,13 +23,11 @@
 #include <tacs_graphs/RoomObservations.h>
 #include <tacs_graphs/SceneGraph.h>
 
-#include <deque>
 #include <memory>
 #include <vector>
 
-#include "tacs_graphs/loop_closure/loop_detector.h"
+#include "tacs_graphs/pipeline/loop_closure_session.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
-#include "tacs_graphs/ros/map_pose_estimate.h"
 #include "tacs_graphs/ros/message_journal.h"
 #include "tacs_graphs/ros/warn_once.h"
 
@@ -44,25 +42,15 @@ class LoopClosureNode {
   void shutdown();
 
  private:
-  /// A room re-detection waiting for its query keyframe's cloud.
-  struct RoomRequest {
-    uint32_t query = 0;
-    int room_id = -1;
-    std::vector<uint32_t> room_keyframes;
-  };
-
   void keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg);
   void sceneGraphCallback(const tacs_graphs::SceneGraph::ConstPtr& msg);
   void roomsCallback(const tacs_graphs::RoomObservations::ConstPtr& msg);
   void resyncCallback(const tacs_graphs::Resync::ConstPtr& msg);
   void replayJournal(ros::NodeHandle& nh);
-  void detectInRoom(const RoomRequest& request);
-  void publish(const LoopDetection& detection, int room_id);
+  void publish(const std::vector<RoomLoopDetection>& detections);
 
   PipelineConfig config_;
-  LoopDetector detector_;
-  MapPoseEstimate poses_;
-  std::deque<RoomRequest> waiting_;
+  LoopClosureSession session_;
   std::unique_ptr<NodeJournal> journal_;
   std::vector<tacs_graphs::LoopClosure> loops_sent_;
   ros::Subscriber keyframe_sub_, scene_graph_sub_, rooms_sub_, resync_sub_;

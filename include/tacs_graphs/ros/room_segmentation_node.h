@@ -24,8 +24,8 @@
 #include <memory>
 
 #include "tacs_graphs/pipeline/pipeline_config.h"
+#include "tacs_graphs/pipeline/room_segmentation_session.h"
 #include "tacs_graphs/ros/message_journal.h"
-#include "tacs_graphs/ros/room_segmentation_session.h"
 #include "tacs_graphs/ros/warn_once.h"
 
 namespace tacs {

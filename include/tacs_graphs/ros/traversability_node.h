@@ -11,11 +11,11 @@
 #include <tacs_graphs/Resync.h>
 #include <tacs_graphs/TraversableGraph.h>
 
+#include "tacs_graphs/pipeline/keyframe_stages.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
+#include "tacs_graphs/ros/node_ground_leveller.h"
 #include "tacs_graphs/ros/resend_buffer.h"
 #include "tacs_graphs/ros/warn_once.h"
-#include "tacs_graphs/traversability/floor_frame.h"
-#include "tacs_graphs/traversability/traversability_mapper.h"
 
 namespace tacs {
 
@@ -33,7 +33,7 @@ class TraversabilityNode {
 
   PipelineConfig config_;
   TraversabilityMapper mapper_;
-  FloorTracker floor_tracker_;  // traversability.find_floor_under_base: a hand-held sensor
+  NodeGroundLeveller leveller_;  // traversability.find_floor_under_base: a hand-held sensor
   ros::Subscriber keyframe_sub_, resync_sub_;
   ros::Publisher graph_pub_, ground_pub_, obstacle_pub_, marker_pub_;
   ResendBuffer<tacs_graphs::TraversableGraph> sent_;

@@ -9,11 +9,11 @@
 #include <tacs_graphs/Resync.h>
 #include <tacs_graphs/WallObservations.h>
 
+#include "tacs_graphs/pipeline/keyframe_stages.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
+#include "tacs_graphs/ros/node_ground_leveller.h"
 #include "tacs_graphs/ros/resend_buffer.h"
 #include "tacs_graphs/ros/warn_once.h"
-#include "tacs_graphs/traversability/floor_frame.h"
-#include "tacs_graphs/walls/wall_extractor.h"
 
 namespace tacs {
 
@@ -31,7 +31,7 @@ class WallExtractionNode {
 
   PipelineConfig config_;
   WallExtractor extractor_;
-  FloorTracker floor_tracker_;  // traversability.find_floor_under_base: a hand-held sensor
+  NodeGroundLeveller leveller_;  // traversability.find_floor_under_base: a hand-held sensor
   ros::Subscriber keyframe_sub_, resync_sub_;
   ros::Publisher walls_pub_;
   ResendBuffer<tacs_graphs::WallObservations> sent_;

@@ -1,4 +1,4 @@
-#include "tacs_graphs/ros/map_pose_estimate.h"
+#include "tacs_graphs/pipeline/map_pose_estimate.h"
 
 namespace tacs {
 
@@ -7,8 +7,13 @@ void MapPoseEstimate::addOdometryPose(uint32_t id, const Pose3& T_odom_base) {
 }
 
 void MapPoseEstimate::setGraph(const SceneGraph& graph) {
-  graph_poses_.clear();
-  for (const auto& [id, kf] : graph.keyframes) graph_poses_[id] = kf.pose();
+  std::map<uint32_t, Pose3> poses;
+  for (const auto& [id, kf] : graph.keyframes) poses[id] = kf.pose();
+  setPoses(poses);
+}
+
+void MapPoseEstimate::setPoses(const std::map<uint32_t, Pose3>& T_map_base) {
+  graph_poses_ = T_map_base;
   // The newest optimised keyframe carries the current correction (the backend's mapToOdom()).
   for (auto it = graph_poses_.rbegin(); it != graph_poses_.rend(); ++it) {
     const auto odom = odom_poses_.find(it->first);

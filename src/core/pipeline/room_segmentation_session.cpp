@@ -1,4 +1,4 @@
-#include "tacs_graphs/ros/room_segmentation_session.h"
+#include "tacs_graphs/pipeline/room_segmentation_session.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,11 +19,13 @@ double rotationDeg(const Pose3& a, const Pose3& b) {
 }  // namespace
 
 RoomSegmentationSession::RoomSegmentationSession(const PipelineConfig& config,
-                                                 const RoomSegmentationOptions& options)
+                                                 const RoomSegmentationOptions& options,
+                                                 const std::optional<Pose3>& T_base_sensor)
     : config_(validated(config)),
       options_(options),
       traversable_map_(config_.traversability),
-      segmenter_(config_.rooms, config_.walls.axes, config_.frames.baseToSensor()),
+      segmenter_(config_.rooms, config_.walls.axes,
+                 T_base_sensor.value_or(config_.frames.baseToSensor())),
       wall_map_(config_.walls.association) {}
 
 RoomSegmentationSession::Pending& RoomSegmentationSession::pending(uint32_t id, double stamp,
@@ -36,11 +38,17 @@ RoomSegmentationSession::Pending& RoomSegmentationSession::pending(uint32_t id, 
 }
 
 void RoomSegmentationSession::addGraph(uint32_t id, double stamp, const Pose3& T_odom_base,
-                                       TravGraph graph) {
+                                       TravGraph graph, const Pose3& T_base_ground) {
   if (needsClouds() || inserted_poses_.count(id) > 0) return;  // voxel method, or segmented
   Pending& p = pending(id, stamp, T_odom_base);
   p.graph = std::move(graph);
   p.has_graph = true;
+  p.T_base_ground = T_base_ground;
+}
+
+Pose3 RoomSegmentationSession::groundPose(uint32_t id, const Pose3& T_map_base) const {
+  const auto it = base_to_ground_.find(id);
+  return it == base_to_ground_.end() ? T_map_base : T_map_base * it->second;
 }
 
 void RoomSegmentationSession::addCloud(uint32_t id, double stamp, const Pose3& T_odom_base,
@@ -53,6 +61,13 @@ void RoomSegmentationSession::setSceneGraph(const SceneGraph& graph,
                                             const std::map<uint32_t, uint32_t>& wall_observations) {
   poses_.setGraph(graph);
   wall_map_ = wallMapFromSceneGraph(graph, wall_observations, config_.walls.association);
+  reposeIfMoved();
+}
+
+void RoomSegmentationSession::setMap(const std::map<uint32_t, Pose3>& T_map_base,
+                                     const WallMap& walls) {
+  poses_.setPoses(T_map_base);
+  wall_map_ = walls;
   reposeIfMoved();
 }
 
@@ -71,7 +86,12 @@ void RoomSegmentationSession::reposeIfMoved() {
   if (!noticeable) return;
   // Rebuilding the map is the costly part: only when the backend moved keyframes (a loop, or
   // walls and rooms pulling on them), as the offline pipeline does after a loop.
-  if (!needsClouds()) traversable_map_.updatePoses(moved);
+  if (!needsClouds()) {
+    std::map<uint32_t, Pose3> ground;
+    for (const auto& [id, pose] : moved)
+      ground.emplace_hint(ground.end(), id, groundPose(id, pose));
+    traversable_map_.updatePoses(ground);
+  }
   for (const auto& [id, pose] : moved) inserted_poses_[id] = pose;
   ++reposes_;
 }
@@ -105,12 +125,17 @@ std::vector<RoomUpdate> RoomSegmentationSession::processReady() {
 
 RoomUpdate RoomSegmentationSession::segment(uint32_t id, const Pending& p,
                                             const Pose3& T_map_base) {
-  if (!needsClouds()) traversable_map_.insert(p.graph, T_map_base, id);
+  // The traversable graph and the robot's position are read in the keyframe's ground frame.
+  if (!p.T_base_ground.isApprox(Pose3::Identity())) base_to_ground_[id] = p.T_base_ground;
+  const Pose3 T_map_ground = groundPose(id, T_map_base);
+  if (!needsClouds()) traversable_map_.insert(p.graph, T_map_ground, id);
   inserted_poses_[id] = T_map_base;
   last_stamp_ = std::max(last_stamp_, p.stamp);
   ++segmented_;
-  const RoomSegmentationResult result = segmenter_.processKeyframe(
-      id, T_map_base, traversable_map_, wall_map_, p.cloud ? p.cloud.get() : nullptr);
+  const RoomSegmentationResult result =
+      needsClouds()
+          ? segmenter_.processKeyframe(id, T_map_base, traversable_map_, wall_map_, p.cloud.get())
+          : segmenter_.processKeyframe(id, T_map_ground, traversable_map_, wall_map_);
   return toUpdate(id, p.stamp, result);
 }
 

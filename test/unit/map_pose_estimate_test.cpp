@@ -1,4 +1,4 @@
-#include "tacs_graphs/ros/map_pose_estimate.h"
+#include "tacs_graphs/pipeline/map_pose_estimate.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "tacs_graphs/ros/backend_session.h"
+#include "tacs_graphs/pipeline/backend_session.h"
 
 #include <pcl/io/pcd_io.h>
 
@@ -167,6 +167,16 @@ BackendSession::Outcome BackendSession::addLoop(const LoopEdge& edge, const Matr
   return Outcome::kAdded;
 }
 
+BackendSession::Outcome BackendSession::addLoop(const LoopClosure& loop) {
+  LoopEdge edge;
+  edge.from = loop.from;
+  edge.to = loop.to;
+  edge.position = loop.T_from_to.translation();
+  edge.orientation = Eigen::Quaterniond(loop.T_from_to.rotation()).normalized();
+  edge.score = loop.score;
+  return addLoop(edge, loop.information);
+}
+
 void BackendSession::flushPending(uint32_t keyframe_id) {
   const auto walls = pending_walls_.find(keyframe_id);
   if (walls != pending_walls_.end()) {
@@ -197,6 +207,12 @@ void BackendSession::removeRoom(uint32_t id) {
   backend_.removeRoom(id);
   journal_rooms_.erase(id);
   wall_to_wall_.erase(id);
+}
+
+bool BackendSession::takeRoom(const MappedRoom& room, const std::vector<uint32_t>& absorbed,
+                              const std::vector<std::pair<uint32_t, uint32_t>>& wall_to_wall) {
+  for (uint32_t id : absorbed) removeRoom(id);
+  return setRoom(room, wall_to_wall);
 }
 
 size_t BackendSession::retainRooms(const std::set<uint32_t>& ids) {

@@ -17,6 +17,7 @@
 
 #include "tacs_graphs/backend/backend.h"
 #include "tacs_graphs/backend/map_export.h"
+#include "tacs_graphs/loop_closure/loop_detector.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
 
 namespace tacs {
@@ -48,6 +49,8 @@ class BackendSession {
   /// A loop closure; buffered until both keyframes are known. A pair already closed is a
   /// duplicate (loops republished after a restart).
   Outcome addLoop(const LoopEdge& edge, const Matrix6d& information);
+  /// The same for a loop as the detector reports it.
+  Outcome addLoop(const LoopClosure& loop);
   /// A mapped room (map frame, wall ids of this backend's landmarks) and the wall-to-wall edges
   /// (mapped wall, observed wall) of its merging. Returns false when the backend holds none of
   /// its facing wall pairs (nothing stored; the next update of the room tries again).
@@ -55,6 +58,10 @@ class BackendSession {
                const std::vector<std::pair<uint32_t, uint32_t>>& wall_to_wall = {});
   /// Removes a room merged into another (RoomAssociation::absorbed), from the graph and journal.
   void removeRoom(uint32_t id);
+  /// A room update of room segmentation: the rooms merged into `room` leave the graph (even when
+  /// `room` itself cannot be stored yet), then setRoom. Returns setRoom's answer.
+  bool takeRoom(const MappedRoom& room, const std::vector<uint32_t>& absorbed,
+                const std::vector<std::pair<uint32_t, uint32_t>>& wall_to_wall);
   /// Removes every room not in `ids` (the room segmenter's complete set). Returns how many.
   size_t retainRooms(const std::set<uint32_t>& ids);
   size_t roomCount() const { return backend_.roomCount(); }
@@ -68,6 +75,8 @@ class BackendSession {
   void noteScanInput(const ScanInput& input);
   const std::optional<ScanInput>& scanInput() const { return scan_input_; }
   Pose3 mapToOdom() const { return backend_.mapToOdom(); }
+  const Backend& backend() const { return backend_; }
+  const KeyframeClouds& keyframeClouds() const { return clouds_.clouds(); }
   std::map<uint32_t, uint32_t> wallObservationCounts() const;
   size_t keyframeCount() const { return journal_keyframes_.size(); }
   /// The highest keyframe id taken (0 before the first).

@@ -1,4 +1,4 @@
-#include "tacs_graphs/ros/scan_gap_monitor.h"
+#include "tacs_graphs/pipeline/scan_gap_monitor.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "tacs_graphs/ros/backend_session.h"
+#include "tacs_graphs/pipeline/backend_session.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "tacs_graphs/ros/room_segmentation_session.h"
+#include "tacs_graphs/pipeline/room_segmentation_session.h"
 
 #include <gtest/gtest.h>
 

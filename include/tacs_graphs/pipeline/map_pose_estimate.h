@@ -20,6 +20,8 @@ class MapPoseEstimate {
   void addOdometryPose(uint32_t id, const Pose3& T_odom_base);
   /// Optimised poses of the backend's scene graph; replaces the previous ones.
   void setGraph(const SceneGraph& graph);
+  /// The same from the optimised keyframe poses themselves.
+  void setPoses(const std::map<uint32_t, Pose3>& T_map_base);
 
   /// The optimised pose, when the latest scene graph holds the keyframe.
   std::optional<Pose3> optimised(uint32_t id) const;
