@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "tacs_graphs/common/types.h"
@@ -28,6 +29,13 @@ class RobotPath {
   const std::vector<Eigen::Vector3d>& samples() const { return samples_; }
 
  private:
+  /// samples_, arc_ and length_ from the dense waypoint polyline, its corners rounded.
+  void roundCorners(const World& world, const std::vector<Eigen::Vector3d>& dense,
+                    const std::string& name);
+  void computeHeadings();  // yaw_
+  /// time_: the speed profile under the yaw-rate and acceleration limits.
+  void computeTiming(const TrajectorySpec& spec);
+
   std::vector<Eigen::Vector3d> samples_;  // x, y, floor z
   std::vector<double> arc_;               // cumulative arc length at each sample
   std::vector<double> yaw_;               // unwrapped heading at each sample [rad]

@@ -21,14 +21,10 @@ bool floorUnder(const World& world, const Eigen::Vector2d& p, double* z) {
   return found;
 }
 
-}  // namespace
-
-RobotPath::RobotPath(const World& world, uint64_t seed, const std::string& name) {
+// The waypoints over all laps, densely sampled (z: given, else NaN to be filled from the floor);
+// between laps the robot drives back to the first waypoint.
+std::vector<Eigen::Vector3d> densePolyline(const World& world, const std::string& name) {
   const TrajectorySpec& spec = world.trajectory;
-  jitter_rad_ = spec.jitter_deg * kPi / 180.0;
-  jitter_z_ = spec.jitter_z_m;
-
-  // Waypoint list over all laps; between laps the robot drives back to the first waypoint.
   std::vector<Eigen::Vector3d> wps;
   for (int lap = 0; lap < spec.laps; ++lap) {
     for (const auto& w : spec.waypoints) {
@@ -42,8 +38,6 @@ RobotPath::RobotPath(const World& world, uint64_t seed, const std::string& name)
                        "]: not above any floor");
     }
   }
-
-  // Dense samples of the polyline (z: given, else NaN to be filled from the floor).
   std::vector<Eigen::Vector3d> dense;
   for (size_t i = 0; i + 1 < wps.size(); ++i) {
     const double len = (wps[i + 1].head<2>() - wps[i].head<2>()).norm();
@@ -51,10 +45,27 @@ RobotPath::RobotPath(const World& world, uint64_t seed, const std::string& name)
     for (int k = 0; k < n; ++k) dense.push_back(wps[i] + (wps[i + 1] - wps[i]) * (double(k) / n));
   }
   dense.push_back(wps.back());
+  return dense;
+}
 
-  // Round the corners: moving average with a window that shrinks at both ends so the path still
-  // starts and ends at the first and last waypoints.
-  const int half = static_cast<int>(std::round(spec.corner_radius_m / kStep));
+}  // namespace
+
+RobotPath::RobotPath(const World& world, uint64_t seed, const std::string& name) {
+  const TrajectorySpec& spec = world.trajectory;
+  jitter_rad_ = spec.jitter_deg * kPi / 180.0;
+  jitter_z_ = spec.jitter_z_m;
+  roundCorners(world, densePolyline(world, name), name);
+  computeHeadings();
+  computeTiming(spec);
+  SplitMix rng(mixSeed(seed, 0x70617468));  // "path"
+  for (double& p : phase_) p = 2.0 * kPi * rng.uniform();
+}
+
+void RobotPath::roundCorners(const World& world, const std::vector<Eigen::Vector3d>& dense,
+                             const std::string& name) {
+  // Moving average with a window that shrinks at both ends so the path still starts and ends at
+  // the first and last waypoints.
+  const int half = static_cast<int>(std::round(world.trajectory.corner_radius_m / kStep));
   const int n = static_cast<int>(dense.size());
   std::vector<Eigen::Vector2d> prefix(n + 1, Eigen::Vector2d::Zero());
   for (int i = 0; i < n; ++i) prefix[i + 1] = prefix[i] + dense[i].head<2>();
@@ -77,8 +88,11 @@ RobotPath::RobotPath(const World& world, uint64_t seed, const std::string& name)
     arc_[i] = arc_[i - 1] + (samples_[i].head<2>() - samples_[i - 1].head<2>()).norm();
   }
   length_ = std::max(arc_.back(), 1e-6);
+}
 
-  // Heading from a short chord around each sample (one-sided at the ends), unwrapped.
+void RobotPath::computeHeadings() {
+  // From a short chord around each sample (one-sided at the ends), unwrapped.
+  const int n = static_cast<int>(samples_.size());
   const int chord = std::max(1, static_cast<int>(std::round(0.1 / kStep)));
   yaw_.assign(n, 0.0);
   for (int i = 0; i < n; ++i) {
@@ -89,8 +103,11 @@ RobotPath::RobotPath(const World& world, uint64_t seed, const std::string& name)
     if (i > 0) yaw = yaw_[i - 1] + std::remainder(yaw - yaw_[i - 1], 2.0 * kPi);
     yaw_[i] = yaw;
   }
+}
 
+void RobotPath::computeTiming(const TrajectorySpec& spec) {
   // Speed profile: yaw-rate limit per segment, then acceleration limits forward and backward.
+  const int n = static_cast<int>(samples_.size());
   const double max_rate = spec.max_yaw_rate_dps * kPi / 180.0;
   std::vector<double> v(n, spec.speed_mps);
   for (int i = 1; i < n; ++i) {
@@ -112,8 +129,6 @@ RobotPath::RobotPath(const World& world, uint64_t seed, const std::string& name)
     // At least as long as the turn takes at the yaw-rate limit (turning in place: ds ~ 0).
     time_[i] = time_[i - 1] + std::max(vm > 1e-9 ? ds / vm : 0.0, dyaw / max_rate);
   }
-  SplitMix rng(mixSeed(seed, 0x70617468));  // "path"
-  for (double& p : phase_) p = 2.0 * kPi * rng.uniform();
 }
 
 Pose3 RobotPath::poseAt(double t) const {

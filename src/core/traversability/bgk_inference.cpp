@@ -97,42 +97,55 @@ double fillBlindDisc(const TriGrid& grid, const TraversabilityConfig& config,
   return r_min;
 }
 
-void inferUnobserved(const TriGrid& grid, const TraversabilityConfig& config,
-                     std::vector<NodeModel>* models, std::vector<int>* slots,
-                     std::vector<Evidence>* evidences) {
-  const double l = config.bgk_length_scale;
-  const int reach = static_cast<int>(std::ceil(l / grid.resolution())) + 1;
-  const int n = grid.cells();
-  std::vector<int>& slot = *slots;
-  slot.assign(models->size(), -1);
-  std::vector<Evidence>& evidence = *evidences;
-  evidence.clear();
-  // Kernel value and direction octant for every (cell offset, source triangle, target triangle):
-  // centroid offsets take few distinct values on the grid, so no trigonometry per pair.
-  struct KernelEntry {
+namespace {
+
+// Kernel value and direction octant for every (cell offset, source triangle, target triangle):
+// centroid offsets take few distinct values on the grid, so no trigonometry per pair.
+struct KernelTable {
+  struct Entry {
     double k;
     int sector;
   };
-  const int side = 2 * reach + 1;
-  std::vector<KernelEntry> table(static_cast<size_t>(side) * side * 16);
-  const int centre = (n / 2 * n + n / 2) * 4;
-  for (int dr = -reach; dr <= reach; ++dr) {
-    for (int dc = -reach; dc <= reach; ++dc) {
-      for (int tj = 0; tj < 4; ++tj) {
-        for (int ti = 0; ti < 4; ++ti) {
-          const Eigen::Vector2d off = grid.centroid(centre + tj) - grid.centroid(centre + ti) +
-                                      grid.resolution() * Eigen::Vector2d(dc, dr);
-          const double angle = std::atan2(off.y(), off.x()) + M_PI;  // [0, 2 pi]
-          table[(((dr + reach) * side + (dc + reach)) * 4 + tj) * 4 + ti] = {
-              sparseKernel(off.norm(), l, config.bgk_sigma0),
-              std::min(7, static_cast<int>(angle / (M_PI / 4)))};
+  int reach = 0;  // [cells] the kernel's support
+  int side = 0;   // 2 * reach + 1
+  std::vector<Entry> entries;
+
+  KernelTable(const TriGrid& grid, const TraversabilityConfig& config) {
+    const double l = config.bgk_length_scale;
+    reach = static_cast<int>(std::ceil(l / grid.resolution())) + 1;
+    side = 2 * reach + 1;
+    entries.resize(static_cast<size_t>(side) * side * 16);
+    const int n = grid.cells();
+    const int centre = (n / 2 * n + n / 2) * 4;
+    for (int dr = -reach; dr <= reach; ++dr) {
+      for (int dc = -reach; dc <= reach; ++dc) {
+        for (int tj = 0; tj < 4; ++tj) {
+          for (int ti = 0; ti < 4; ++ti) {
+            const Eigen::Vector2d off = grid.centroid(centre + tj) - grid.centroid(centre + ti) +
+                                        grid.resolution() * Eigen::Vector2d(dc, dr);
+            const double angle = std::atan2(off.y(), off.x()) + M_PI;  // [0, 2 pi]
+            entries[index(dr, dc, tj, ti)] = {sparseKernel(off.norm(), l, config.bgk_sigma0),
+                                              std::min(7, static_cast<int>(angle / (M_PI / 4)))};
+          }
         }
       }
     }
   }
-  // Scatter the evidence of every observed node to the unobserved nodes within the kernel.
-  for (size_t j = 0; j < models->size(); ++j) {
-    const NodeModel& src = (*models)[j];
+  size_t index(int dr, int dc, int tri_source, int tri_target) const {
+    return ((static_cast<size_t>(dr + reach) * side + (dc + reach)) * 4 + tri_source) * 4 +
+           tri_target;
+  }
+};
+
+// Scatters the evidence of every observed node to the unobserved nodes within the kernel.
+void scatterEvidence(const TriGrid& grid, const KernelTable& table,
+                     const std::vector<NodeModel>& models, std::vector<int>* slots,
+                     std::vector<Evidence>* evidences) {
+  const int n = grid.cells(), reach = table.reach;
+  std::vector<int>& slot = *slots;
+  std::vector<Evidence>& evidence = *evidences;
+  for (size_t j = 0; j < models.size(); ++j) {
+    const NodeModel& src = models[j];
     if (src.inferred || src.label == TravLabel::kUnknown) continue;
     const bool ground = src.isGround();
     const int cell = static_cast<int>(j / 4), row0 = cell / n, col0 = cell % n;
@@ -141,9 +154,9 @@ void inferUnobserved(const TriGrid& grid, const TraversabilityConfig& config,
       for (int col = std::max(0, col0 - reach); col <= std::min(n - 1, col0 + reach); ++col) {
         for (int tri = 0; tri < 4; ++tri) {
           const int i = (row * n + col) * 4 + tri;
-          if (!isTarget((*models)[i])) continue;
-          const KernelEntry& ke =
-              table[(((row0 - row + reach) * side + (col0 - col + reach)) * 4 + tri_j) * 4 + tri];
+          if (!isTarget(models[i])) continue;
+          const KernelTable::Entry& ke =
+              table.entries[table.index(row0 - row, col0 - col, tri_j, tri)];
           if (ke.k <= 0.0) continue;
           if (slot[i] < 0) {
             slot[i] = static_cast<int>(evidence.size());
@@ -154,7 +167,7 @@ void inferUnobserved(const TriGrid& grid, const TraversabilityConfig& config,
             e.nonground += ke.k;
             continue;
           }
-          const Eigen::Vector2d& at = (*models)[i].position.head<2>();
+          const Eigen::Vector2d& at = models[i].position.head<2>();
           const double z = src.heightAt(at.x(), at.y());
           e.ground += ke.k;
           e.z += ke.k * z;
@@ -165,8 +178,12 @@ void inferUnobserved(const TriGrid& grid, const TraversabilityConfig& config,
       }
     }
   }
-  // Beta posterior of "ground" with a uniform prior; infer only where the ground evidence
-  // surrounds the node: a drop-off edge or a wall has evidence on one side only.
+}
+
+// Beta posterior of "ground" with a uniform prior; infers only where the ground evidence
+// surrounds the node: a drop-off edge or a wall has evidence on one side only.
+void inferFromEvidence(const TraversabilityConfig& config, const std::vector<int>& slot,
+                       const std::vector<Evidence>& evidence, std::vector<NodeModel>* models) {
   for (size_t i = 0; i < models->size(); ++i) {
     if (slot[i] < 0) continue;
     const Evidence& e = evidence[slot[i]];
@@ -184,6 +201,18 @@ void inferUnobserved(const TriGrid& grid, const TraversabilityConfig& config,
                             config.max_step * config.max_step / (1.0 + e.ground);
     setInferredGround(&(*models)[i], e.normal.normalized(), z, variance);
   }
+}
+
+}  // namespace
+
+void inferUnobserved(const TriGrid& grid, const TraversabilityConfig& config,
+                     std::vector<NodeModel>* models, std::vector<int>* slots,
+                     std::vector<Evidence>* evidences) {
+  slots->assign(models->size(), -1);
+  evidences->clear();
+  const KernelTable table(grid, config);
+  scatterEvidence(grid, table, *models, slots, evidences);
+  inferFromEvidence(config, *slots, *evidences, models);
 }
 
 }  // namespace tacs::trav

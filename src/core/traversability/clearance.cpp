@@ -3,6 +3,7 @@
 // (Felzenszwalb and Huttenlocher, lower envelope of parabolas) gives every fine cell its distance
 // to the nearest obstacle, and a node takes the minimum over the fine cells of its triangle.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -43,6 +44,37 @@ void edt1d(float* data, int n, int stride, std::vector<float>* f, std::vector<in
   }
 }
 
+// Rows r0..r1 and columns c0..c1 of the grid cells holding a node with content (all 0 if none).
+std::array<int, 4> contentBox(const std::vector<NodeModel>& models, int n) {
+  int r0 = n, r1 = -1, c0 = n, c1 = -1;
+  for (size_t k = 0; k < models.size(); ++k) {
+    if (!hasContent(models[k])) continue;
+    const int cell = static_cast<int>(k / 4);
+    r0 = std::min(r0, cell / n);
+    r1 = std::max(r1, cell / n);
+    c0 = std::min(c0, cell % n);
+    c1 = std::max(c1, cell % n);
+  }
+  if (r1 < 0) return {0, 0, 0, 0};
+  return {r0, r1, c0, c1};
+}
+
+// The (row, column) fine cells of each of a cell's four triangles, `sub` x `sub` fine cells a
+// cell, by the sector of their centre; diagonal cells go to both triangles.
+std::array<std::vector<std::pair<int, int>>, 4> fineCellsOfTriangles(int sub) {
+  std::array<std::vector<std::pair<int, int>>, 4> cells_of;
+  for (int a = 0; a < sub; ++a) {
+    for (int b = 0; b < sub; ++b) {
+      const double dx = (b + 0.5) / sub - 0.5, dy = (a + 0.5) / sub - 0.5;
+      const double ax = std::abs(dx), ay = std::abs(dy);
+      const double eps = 1e-9;
+      if (ax >= ay - eps) cells_of[dx >= 0 ? 0 : 2].emplace_back(a, b);
+      if (ay >= ax - eps) cells_of[dy >= 0 ? 1 : 3].emplace_back(a, b);
+    }
+  }
+  return cells_of;
+}
+
 }  // namespace
 
 ClearanceField::ClearanceField(const BucketedScan& scan, const TriGrid& grid,
@@ -56,16 +88,7 @@ ClearanceField::ClearanceField(const BucketedScan& scan, const TriGrid& grid,
   cap_ = static_cast<float>(2.0 * config.max_range);
   // The transform runs on the bounding box of the nodes with content only (every obstacle point
   // and every node that can be queried lies in it): exact there, and indoors much smaller.
-  int r0 = n, r1 = -1, c0 = n, c1 = -1;
-  for (size_t k = 0; k < models->size(); ++k) {
-    if (!hasContent((*models)[k])) continue;
-    const int cell = static_cast<int>(k / 4);
-    r0 = std::min(r0, cell / n);
-    r1 = std::max(r1, cell / n);
-    c0 = std::min(c0, cell % n);
-    c1 = std::max(c1, cell % n);
-  }
-  if (r1 < 0) r0 = r1 = c0 = c1 = 0;
+  const auto [r0, r1, c0, c1] = contentBox(*models, n);
   rows_ = (r1 - r0 + 1) * sub;
   cols_ = (c1 - c0 + 1) * sub;
   x0_ = grid.origin() + c0 * grid.resolution();
@@ -99,17 +122,7 @@ ClearanceField::ClearanceField(const BucketedScan& scan, const TriGrid& grid,
     edt1d(dist.data() + static_cast<size_t>(row) * cols_, cols_, 1, &f, &v, &z);
   }
 
-  // Fine cells of each triangle (by the sector of their centre; diagonal cells go to both).
-  std::vector<std::pair<int, int>> cells_of[4];
-  for (int a = 0; a < sub; ++a) {
-    for (int b = 0; b < sub; ++b) {
-      const double dx = (b + 0.5) / sub - 0.5, dy = (a + 0.5) / sub - 0.5;
-      const double ax = std::abs(dx), ay = std::abs(dy);
-      const double eps = 1e-9;
-      if (ax >= ay - eps) cells_of[dx >= 0 ? 0 : 2].emplace_back(a, b);
-      if (ay >= ax - eps) cells_of[dy >= 0 ? 1 : 3].emplace_back(a, b);
-    }
-  }
+  const std::array<std::vector<std::pair<int, int>>, 4> cells_of = fineCellsOfTriangles(sub);
   for (size_t k = 0; k < models->size(); ++k) {
     NodeModel& m = (*models)[k];
     if (!hasContent(m)) {
