@@ -2,6 +2,8 @@
 
 #include <ros/console.h>
 
+#include "tacs_graphs/common/message_reason.h"
+
 namespace tacs {
 
 void WarnOnce::warn(const std::string& what, const std::string& reason) {
@@ -17,12 +19,7 @@ void WarnOnce::warn(const std::string& what, const std::string& reason, const st
   }
 }
 
-std::string WarnOnce::reasonKey(const std::string& detail) {
-  const size_t cut = detail.find_first_of("(:");
-  std::string key = detail.substr(0, cut);
-  while (!key.empty() && key.back() == ' ') key.pop_back();
-  return key;
-}
+std::string WarnOnce::reasonKey(const std::string& detail) { return messageReason(detail); }
 
 size_t WarnOnce::count(const std::string& reason) const {
   const auto it = counts_.find(reason);

@@ -11,6 +11,7 @@
 #include <set>
 #include <string>
 
+#include "tacs_graphs/common/message_reason.h"
 #include "tacs_graphs/common/timing.h"
 #include "tacs_graphs/common/trajectory_io.h"
 #include "tacs_graphs/eval/trajectory_metrics.h"
@@ -213,24 +214,6 @@ void printAccuracy(const tacs::Pipeline& pipeline, const tacs::Trajectory& groun
   }
 }
 
-// The kind of a message about a scan: its text with every number as '#', so that "scan at
-// 12.3 s: 40 NaN points" and "... 41 NaN points" are reported once.
-std::string messageKind(const std::string& text) {
-  std::string kind;
-  for (size_t i = 0; i < text.size(); ++i) {
-    if (!std::isdigit(static_cast<unsigned char>(text[i]))) {
-      kind += text[i];
-      continue;
-    }
-    kind += '#';
-    while (i + 1 < text.size() &&
-           (std::isdigit(static_cast<unsigned char>(text[i + 1])) || text[i + 1] == '.')) {
-      ++i;
-    }
-  }
-  return kind;
-}
-
 // Ctrl-C stops reading scans and leaves --out as it was; a second one kills at once.
 std::atomic<bool> interrupted{false};
 extern "C" void onInterrupt(int) {
@@ -276,7 +259,7 @@ int run(const Options& o) {
                                out.path() + " is as it was");
     }
     if (!scan.error.empty()) {
-      if (reported.insert(messageKind(scan.error)).second) {
+      if (reported.insert(tacs::messageReason(scan.error)).second) {
         std::cerr << "\n[tacs_offline] scan " << k << " skipped: " << scan.error << "\n";
       }
       continue;
@@ -301,7 +284,7 @@ int run(const Options& o) {
     }
     const tacs::ScanOutcome outcome =
         pipeline_ptr->processScan(scan.stamp, in_base, times.ok ? &times.offset_s : nullptr);
-    if (!outcome.accepted && reported.insert(messageKind(outcome.error)).second) {
+    if (!outcome.accepted && reported.insert(tacs::messageReason(outcome.error)).second) {
       std::cerr << "\n[tacs_offline] scan " << k << " rejected: " << outcome.error << "\n";
     }
     if (!o.quiet && (k % 20 == 0 || k == source->size())) {

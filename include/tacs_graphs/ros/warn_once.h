@@ -13,7 +13,7 @@ class WarnOnce {
   void warn(const std::string& what, const std::string& reason);
   /// As warn(), counting by `reason` but logging `detail` (the message with its numbers).
   void warn(const std::string& what, const std::string& reason, const std::string& detail);
-  /// Counting key of a reason with numbers: the text before the first '(' or ':'.
+  /// Counting key of a message with numbers: messageReason() (common/message_reason.h).
   static std::string reasonKey(const std::string& detail);
   size_t count(const std::string& reason) const;
   size_t total() const { return total_; }
