@@ -45,7 +45,7 @@ TEST(LoopClosureConfig, InvalidValuesNameTheField) {
   expectError(c, "loop_closure.cosg.d_loop_m");
   c = LoopClosureConfig();
   c.distance.fitness_threshold = -1.0;
-  expectError(c, "loop_closure.distance.fitness_threshold");
+  expectError(c, "loop_closure.distance.fitness_threshold_m2");
   c = LoopClosureConfig();
   c.registration.tilt_information_scale = 0.0;  // a singular information
   expectError(c, "loop_closure.registration.tilt_information_scale");

@@ -227,7 +227,7 @@ TEST(TraversabilityConfig, ValidateNamesTheField) {
     c.validate();
     FAIL() << "no throw";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("traversability.resolution"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("traversability.resolution_m"), std::string::npos);
   }
   TraversabilityConfig d;
   d.robot_height = 0.05;

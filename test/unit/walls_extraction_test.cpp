@@ -322,7 +322,7 @@ TEST(WallExtraction, ConfigValidationNamesTheField) {
     cfg.validate();
     FAIL() << "expected ConfigError";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("walls.extraction.max_gap"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("walls.extraction.max_gap_m"), std::string::npos);
   }
   EXPECT_THROW(WallExtractor{cfg}, ConfigError);
   EXPECT_NO_THROW(WallExtractionConfig{}.validate());
@@ -330,7 +330,7 @@ TEST(WallExtraction, ConfigValidationNamesTheField) {
 
 TEST(WallExtraction, PipelineConfigReadsTheWallsSection) {
   const auto j = parseYamlAsJson(
-      "walls:\n  extraction:\n    max_gap: 0.8\n  association:\n    max_gap: 0.4\n"
+      "walls:\n  extraction:\n    max_gap_m: 0.8\n  association:\n    max_gap_m: 0.4\n"
       "  axes:\n    window_deg: 5.0\n    typo: 1\n",
       "test.yaml");
   PipelineConfig cfg;
@@ -341,8 +341,21 @@ TEST(WallExtraction, PipelineConfigReadsTheWallsSection) {
   EXPECT_DOUBLE_EQ(cfg.walls.axes.window_deg, 5.0);
   ASSERT_EQ(unknown.size(), 1u);
   EXPECT_EQ(unknown[0], "walls.axes.typo");
-  const auto bad = parseYamlAsJson("walls:\n  association:\n    max_plane_distance: -1\n", "b");
+  const auto bad = parseYamlAsJson("walls:\n  association:\n    max_plane_distance_m: -1\n", "b");
   EXPECT_THROW(configFromJson(bad, "b", &cfg, &unknown), ConfigError);
+}
+
+TEST(WallExtraction, AKeyWithoutItsUnitIsRejectedNamingTheNewKey) {
+  const auto old = parseYamlAsJson("walls:\n  extraction:\n    max_gap: 0.8\n", "old.yaml");
+  PipelineConfig cfg;
+  std::vector<std::string> unknown;
+  try {
+    configFromJson(old, "old.yaml", &cfg, &unknown);
+    FAIL() << "the old key was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("walls.extraction.max_gap_m"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

@@ -51,14 +51,14 @@ struct BackendConfig {
   template <class V>
   void visit(V& v) {
     v("wall_sigma_normal", wall_sigma_normal);
-    v("wall_sigma_d", wall_sigma_d);
+    v("wall_sigma_d_m", wall_sigma_d);
     v("wall_huber", wall_huber);
     v("loop_huber", loop_huber);
-    v("room_sigma", room_sigma);
-    v("corridor_anchor_sigma", corridor_anchor_sigma);
-    v("wall_merge_sigma_theta", wall_merge_sigma_theta);
-    v("wall_merge_sigma_d", wall_merge_sigma_d);
-    v("anchor_tilt_sigma", anchor_tilt_sigma);
+    v("room_sigma_m", room_sigma);
+    v("corridor_anchor_sigma_m", corridor_anchor_sigma);
+    v("wall_merge_sigma_theta_rad", wall_merge_sigma_theta);
+    v("wall_merge_sigma_d_m", wall_merge_sigma_d);
+    v("anchor_tilt_sigma_rad", anchor_tilt_sigma);
     v("max_iterations", max_iterations);
     v("trust_region", trust_region);
     v("num_threads", num_threads);

@@ -2,7 +2,7 @@
 //
 // Each core class has a nested `Config` struct with in-class defaults and two members:
 //
-//   template <class Visitor> void visit(Visitor& v) { v("voxel_size", voxel_size); ... }
+//   template <class Visitor> void visit(Visitor& v) { v("voxel_size_m", voxel_size); ... }
 //   void validate() const;  // throws ConfigError naming the bad field
 //
 // `visit` lists the fields once; the same list drives reading from a JSON tree (which is what
@@ -102,7 +102,8 @@ class ConfigReader {
     read(node_.at(key), config_detail::joinPath(path_, key), &field);
   }
 
-  /// Appends the keys of this object that no visited field claimed to the unknown-key list.
+  /// Appends the keys of this object that no visited field claimed to the unknown-key list;
+  /// throws ConfigError for a key whose field now has a unit suffix (_m, _deg, ...).
   void finish() const;
 
  private:

@@ -130,7 +130,7 @@ struct DistanceLoopConfig {
     v("accum_distance_m", accum_distance_m);
     v("min_edge_interval_m", min_edge_interval_m);
     v("max_correspondence_m", max_correspondence_m);
-    v("fitness_threshold", fitness_threshold);
+    v("fitness_threshold_m2", fitness_threshold);
   }
   void validate() const;
 };

@@ -60,16 +60,16 @@ struct TacsFreeSpaceConfig {
 
   template <class V>
   void visit(V& v) {
-    v("max_doorway_width", max_doorway_width);
-    v("min_doorway_width", min_doorway_width);
-    v("min_jamb_length", min_jamb_length);
+    v("max_doorway_width_m", max_doorway_width);
+    v("min_doorway_width_m", min_doorway_width);
+    v("min_jamb_length_m", min_jamb_length);
     v("jamb_max_angle_deg", jamb_max_angle_deg);
-    v("jamb_max_offset", jamb_max_offset);
+    v("jamb_max_offset_m", jamb_max_offset);
     v("max_keyframes_per_observation", max_keyframes_per_observation);
-    v("path_retry_radius", path_retry_radius);
-    v("robot_search_radius", robot_search_radius);
-    v("local_radius", local_radius);
-    v("border_distance", border_distance);
+    v("path_retry_radius_m", path_retry_radius);
+    v("robot_search_radius_m", robot_search_radius);
+    v("local_radius_m", local_radius);
+    v("border_distance_m", border_distance);
   }
   void validate() const;
 };
@@ -94,16 +94,16 @@ struct VoxelFreeSpaceConfig {
 
   template <class V>
   void visit(V& v) {
-    v("resolution", resolution);
-    v("band_min", band_min);
-    v("band_max", band_max);
-    v("max_ray_length", max_ray_length);
-    v("downsample", downsample);
+    v("resolution_m", resolution);
+    v("band_min_m", band_min);
+    v("band_max_m", band_max);
+    v("max_ray_length_m", max_ray_length);
+    v("downsample_m", downsample);
     v("min_hits", min_hits);
-    v("doorway_clearance", doorway_clearance);
-    v("min_cluster_area", min_cluster_area);
+    v("doorway_clearance_m", doorway_clearance);
+    v("min_cluster_area_m2", min_cluster_area);
     v("update_every_keyframes", update_every_keyframes);
-    v("merge_distance", merge_distance);
+    v("merge_distance_m", merge_distance);
     v("merging", merging);
   }
   void validate() const;
@@ -131,11 +131,11 @@ struct RoomExtractionConfig {
 
   template <class V>
   void visit(V& v) {
-    v("adjacency_distance", adjacency_distance);
-    v("min_adjacent_length", min_adjacent_length);
+    v("adjacency_distance_m", adjacency_distance);
+    v("min_adjacent_length_m", min_adjacent_length);
     v("max_behind_share", max_behind_share);
-    v("extent_margin", extent_margin);
-    v("min_width", min_width);
+    v("extent_margin_m", extent_margin);
+    v("min_width_m", min_width);
     v("min_free_space_points", min_free_space_points);
     v("min_inside_share", min_inside_share);
   }
@@ -156,9 +156,9 @@ struct RoomMergingConfig {
 
   template <class V>
   void visit(V& v) {
-    v("overlap_cell", overlap_cell);
+    v("overlap_cell_m", overlap_cell);
     v("min_overlap", min_overlap);
-    v("max_axis_distance", max_axis_distance);
+    v("max_axis_distance_m", max_axis_distance);
     v("nested_overlap", nested_overlap);
   }
   void validate() const;

@@ -56,38 +56,38 @@ struct TraversabilityConfig {
 
   template <class V>
   void visit(V& v) {
-    v("resolution", resolution);
-    v("max_range", max_range);
-    v("min_range", min_range);
-    v("robot_floor_z", robot_floor_z);
+    v("resolution_m", resolution);
+    v("max_range_m", max_range);
+    v("min_range_m", min_range);
+    v("robot_floor_z_m", robot_floor_z);
     v("find_floor_under_base", find_floor_under_base);
-    v("robot_height", robot_height);
-    v("obstacle_min_height", obstacle_min_height);
+    v("robot_height_m", robot_height);
+    v("obstacle_min_height_m", obstacle_min_height);
     v("min_points", min_points);
     v("seed_count", seed_count);
-    v("seed_margin", seed_margin);
+    v("seed_margin_m", seed_margin);
     v("plane_iterations", plane_iterations);
-    v("plane_distance", plane_distance);
+    v("plane_distance_m", plane_distance);
     v("max_slope_deg", max_slope_deg);
-    v("max_plane_thickness", max_plane_thickness);
-    v("min_plane_width", min_plane_width);
-    v("max_ground_height", max_ground_height);
-    v("min_ground_height", min_ground_height);
-    v("max_step", max_step);
+    v("max_plane_thickness_m", max_plane_thickness);
+    v("min_plane_width_m", min_plane_width);
+    v("max_ground_height_m", max_ground_height);
+    v("min_ground_height_m", min_ground_height);
+    v("max_step_m", max_step);
     v("max_normal_change_deg", max_normal_change_deg);
-    v("bgk_length_scale", bgk_length_scale);
+    v("bgk_length_scale_m", bgk_length_scale);
     v("bgk_sigma0", bgk_sigma0);
     v("bgk_min_support", bgk_min_support);
     v("bgk_min_ground_prob", bgk_min_ground_prob);
     v("bgk_min_opposite", bgk_min_opposite);
-    v("blind_radius_max", blind_radius_max);
-    v("root_search_radius", root_search_radius);
-    v("min_clearance", min_clearance);
-    v("safe_clearance", safe_clearance);
+    v("blind_radius_max_m", blind_radius_max);
+    v("root_search_radius_m", root_search_radius);
+    v("min_clearance_m", min_clearance);
+    v("safe_clearance_m", safe_clearance);
     v("clearance_subdivision", clearance_subdivision);
     v("tilt_warning_deg", tilt_warning_deg);
-    v("map_resolution", map_resolution);
-    v("map_merge_height", map_merge_height);
+    v("map_resolution_m", map_resolution);
+    v("map_merge_height_m", map_merge_height);
     v("map_retention", map_retention);
   }
   /// Throws ConfigError naming the field ("traversability.<field>: ...").

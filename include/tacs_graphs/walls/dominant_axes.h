@@ -32,7 +32,7 @@ struct DominantAxesConfig {
     v("bin_deg", bin_deg);
     v("smoothing_deg", smoothing_deg);
     v("window_deg", window_deg);
-    v("min_support", min_support);
+    v("min_support_m", min_support);
   }
   /// Throws ConfigError naming the field ("walls.axes.<field>").
   void validate() const;

@@ -87,32 +87,32 @@ struct WallExtractionConfig {
 
   template <class V>
   void visit(V& v) {
-    v("voxel_size", voxel_size);
-    v("min_range", min_range);
-    v("max_range", max_range);
-    v("distance_threshold", distance_threshold);
+    v("voxel_size_m", voxel_size);
+    v("min_range_m", min_range);
+    v("max_range_m", max_range);
+    v("distance_threshold_m", distance_threshold);
     v("ransac_iterations", ransac_iterations);
     v("score_subsample", score_subsample);
-    v("sample_cell", sample_cell);
+    v("sample_cell_m", sample_cell);
     v("refine_iterations", refine_iterations);
     v("max_planes", max_planes);
     v("min_remaining_points", min_remaining_points);
     v("min_plane_inliers", min_plane_inliers);
     v("vertical_tolerance_deg", vertical_tolerance_deg);
     v("horizontal_tolerance_deg", horizontal_tolerance_deg);
-    v("max_gap", max_gap);
-    v("edge_band", edge_band);
+    v("max_gap_m", max_gap);
+    v("edge_band_m", edge_band);
     v("min_wall_inliers", min_wall_inliers);
-    v("min_wall_length", min_wall_length);
-    v("min_wall_height", min_wall_height);
+    v("min_wall_length_m", min_wall_length);
+    v("min_wall_height_m", min_wall_height);
     v("min_coverage", min_coverage);
-    v("min_wall_top", min_wall_top);
-    v("max_wall_bottom", max_wall_bottom);
+    v("min_wall_top_m", min_wall_top);
+    v("max_wall_bottom_m", max_wall_bottom);
     v("fov_top_margin_deg", fov_top_margin_deg);
     v("seen_over_min_points", seen_over_min_points);
-    v("seen_over_depth", seen_over_depth);
-    v("seen_over_clearance", seen_over_clearance);
-    v("on_wall_max_depth", on_wall_max_depth);
+    v("seen_over_depth_m", seen_over_depth);
+    v("seen_over_clearance_m", seen_over_clearance);
+    v("on_wall_max_depth_m", on_wall_max_depth);
     v("min_horizontal_inliers", min_horizontal_inliers);
     v("seed", seed);
   }

@@ -63,10 +63,10 @@ struct WallAssociationConfig {
   template <class V>
   void visit(V& v) {
     v("max_normal_angle_deg", max_normal_angle_deg);
-    v("max_plane_distance", max_plane_distance);
-    v("max_gap", max_gap);
+    v("max_plane_distance_m", max_plane_distance);
+    v("max_gap_m", max_gap);
     v("average_planes", average_planes);
-    v("min_wall_length", min_wall_length);
+    v("min_wall_length_m", min_wall_length);
   }
   /// Throws ConfigError naming the field ("walls.association.<field>").
   void validate() const;

@@ -12,16 +12,16 @@ namespace tacs {
 
 void BackendConfig::validate() const {
   for (const auto& [name, value] : {std::pair{"wall_sigma_normal", wall_sigma_normal},
-                                    {"wall_sigma_d", wall_sigma_d},
+                                    {"wall_sigma_d_m", wall_sigma_d},
                                     {"wall_huber", wall_huber},
                                     {"loop_huber", loop_huber},
-                                    {"room_sigma", room_sigma},
-                                    {"corridor_anchor_sigma", corridor_anchor_sigma},
-                                    {"wall_merge_sigma_theta", wall_merge_sigma_theta},
-                                    {"wall_merge_sigma_d", wall_merge_sigma_d}}) {
+                                    {"room_sigma_m", room_sigma},
+                                    {"corridor_anchor_sigma_m", corridor_anchor_sigma},
+                                    {"wall_merge_sigma_theta_rad", wall_merge_sigma_theta},
+                                    {"wall_merge_sigma_d_m", wall_merge_sigma_d}}) {
     requireConfig(value > 0, std::string("backend.") + name, "must be > 0");
   }
-  requireConfig(anchor_tilt_sigma >= 0, "backend.anchor_tilt_sigma", "must be >= 0");
+  requireConfig(anchor_tilt_sigma >= 0, "backend.anchor_tilt_sigma_rad", "must be >= 0");
   requireConfig(max_iterations >= 1, "backend.max_iterations", "must be >= 1");
   requireConfig(num_threads >= 1, "backend.num_threads", "must be >= 1");
   requireConfig(optimize_every_keyframes >= 1, "backend.optimize_every_keyframes", "must be >= 1");

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -69,11 +69,21 @@ ConfigReader::ConfigReader(const nlohmann::json& node, std::string path,
     : node_(node), path_(std::move(path)), unknown_keys_(unknown_keys) {}
 
 void ConfigReader::finish() const {
-  if (!unknown_keys_ || !node_.is_object()) return;
+  if (!node_.is_object()) return;
+  const auto claimed = [this](const std::string& key) {
+    return std::find(claimed_.begin(), claimed_.end(), key) != claimed_.end();
+  };
   for (auto it = node_.begin(); it != node_.end(); ++it) {
-    if (std::find(claimed_.begin(), claimed_.end(), it.key()) == claimed_.end()) {
-      unknown_keys_->push_back(config_detail::joinPath(path_, it.key()));
+    if (claimed(it.key())) continue;
+    // Keys carry their unit: a key the unit was added to is an error naming the new key.
+    for (const char* unit : {"_m", "_m2", "_deg", "_rad", "_s"}) {
+      if (claimed(it.key() + unit)) {
+        throw ConfigError(config_detail::joinPath(path_, it.key()) + ": renamed " +
+                          config_detail::joinPath(path_, it.key() + unit) +
+                          " (keys name their unit)");
+      }
     }
+    if (unknown_keys_) unknown_keys_->push_back(config_detail::joinPath(path_, it.key()));
   }
 }
 

@@ -52,7 +52,7 @@ void DistanceLoopConfig::validate() const {
   requireConfig(accum_distance_m >= 0.0, p + "accum_distance_m", "must be >= 0");
   requireConfig(min_edge_interval_m >= 0.0, p + "min_edge_interval_m", "must be >= 0");
   requireConfig(max_correspondence_m > 0.0, p + "max_correspondence_m", "must be > 0");
-  requireConfig(fitness_threshold > 0.0, p + "fitness_threshold", "must be > 0");
+  requireConfig(fitness_threshold > 0.0, p + "fitness_threshold_m2", "must be > 0");
 }
 
 void LoopClosureConfig::validate() const {

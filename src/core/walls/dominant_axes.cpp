@@ -29,7 +29,7 @@ void DominantAxesConfig::validate() const {
   requireConfig(bin_deg > 0.0 && bin_deg <= 10.0, p + "bin_deg", "must be in (0, 10]");
   requireConfig(smoothing_deg >= 0.0, p + "smoothing_deg", "must be >= 0");
   requireConfig(window_deg > 0.0 && window_deg <= 45.0, p + "window_deg", "must be in (0, 45]");
-  requireConfig(min_support >= 0.0, p + "min_support", "must be >= 0");
+  requireConfig(min_support >= 0.0, p + "min_support_m", "must be >= 0");
 }
 
 Eigen::Vector2d DominantAxes::xAxis() const { return {std::cos(yaw), std::sin(yaw)}; }

@@ -1,5 +1,5 @@
 // Internal building block of WallExtractor: where a wall face starts, for
-// walls.extraction.max_wall_bottom. Not part of the public interface.
+// walls.extraction.max_wall_bottom_m. Not part of the public interface.
 #pragma once
 
 #include <Eigen/Core>

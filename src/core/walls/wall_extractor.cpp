@@ -16,13 +16,13 @@ namespace tacs {
 
 void WallExtractionConfig::validate() const {
   const std::string p = "walls.extraction.";
-  requireConfig(voxel_size >= 0.0, p + "voxel_size", "must be >= 0");
-  requireConfig(min_range >= 0.0 && max_range > min_range, p + "max_range",
+  requireConfig(voxel_size >= 0.0, p + "voxel_size_m", "must be >= 0");
+  requireConfig(min_range >= 0.0 && max_range > min_range, p + "max_range_m",
                 "need 0 <= min_range < max_range");
-  requireConfig(distance_threshold > 0.0, p + "distance_threshold", "must be > 0");
+  requireConfig(distance_threshold > 0.0, p + "distance_threshold_m", "must be > 0");
   requireConfig(ransac_iterations > 0, p + "ransac_iterations", "must be > 0");
   requireConfig(score_subsample >= 16, p + "score_subsample", "must be >= 16");
-  requireConfig(sample_cell > 0.0, p + "sample_cell", "must be > 0");
+  requireConfig(sample_cell > 0.0, p + "sample_cell_m", "must be > 0");
   requireConfig(refine_iterations >= 0, p + "refine_iterations", "must be >= 0");
   requireConfig(max_planes > 0, p + "max_planes", "must be > 0");
   requireConfig(min_remaining_points >= 3, p + "min_remaining_points", "must be >= 3");
@@ -31,21 +31,21 @@ void WallExtractionConfig::validate() const {
                 p + "vertical_tolerance_deg", "must be in (0, 45)");
   requireConfig(horizontal_tolerance_deg > 0.0 && horizontal_tolerance_deg < 45.0,
                 p + "horizontal_tolerance_deg", "must be in (0, 45)");
-  requireConfig(max_gap > 0.0, p + "max_gap", "must be > 0");
-  requireConfig(edge_band >= 0.0, p + "edge_band", "must be >= 0");
+  requireConfig(max_gap > 0.0, p + "max_gap_m", "must be > 0");
+  requireConfig(edge_band >= 0.0, p + "edge_band_m", "must be >= 0");
   requireConfig(min_wall_inliers >= 3, p + "min_wall_inliers", "must be >= 3");
-  requireConfig(min_wall_length >= 0.0, p + "min_wall_length", "must be >= 0");
-  requireConfig(min_wall_height >= 0.0, p + "min_wall_height", "must be >= 0");
+  requireConfig(min_wall_length >= 0.0, p + "min_wall_length_m", "must be >= 0");
+  requireConfig(min_wall_height >= 0.0, p + "min_wall_height_m", "must be >= 0");
   requireConfig(min_coverage >= 0.0 && min_coverage <= 1.0, p + "min_coverage",
                 "must be in [0, 1]");
-  requireConfig(min_wall_top >= 0.0, p + "min_wall_top", "must be >= 0 (0 = off)");
-  requireConfig(max_wall_bottom >= 0.0, p + "max_wall_bottom", "must be >= 0 (0 = off)");
+  requireConfig(min_wall_top >= 0.0, p + "min_wall_top_m", "must be >= 0 (0 = off)");
+  requireConfig(max_wall_bottom >= 0.0, p + "max_wall_bottom_m", "must be >= 0 (0 = off)");
   requireConfig(fov_top_margin_deg >= 0.0 && fov_top_margin_deg < 90.0, p + "fov_top_margin_deg",
                 "must be in [0, 90)");
   requireConfig(seen_over_min_points >= 0, p + "seen_over_min_points", "must be >= 0 (0 = off)");
-  requireConfig(seen_over_depth >= 0.0, p + "seen_over_depth", "must be >= 0");
-  requireConfig(seen_over_clearance >= 0.0, p + "seen_over_clearance", "must be >= 0");
-  requireConfig(on_wall_max_depth >= 0.0, p + "on_wall_max_depth", "must be >= 0 (0 = off)");
+  requireConfig(seen_over_depth >= 0.0, p + "seen_over_depth_m", "must be >= 0");
+  requireConfig(seen_over_clearance >= 0.0, p + "seen_over_clearance_m", "must be >= 0");
+  requireConfig(on_wall_max_depth >= 0.0, p + "on_wall_max_depth_m", "must be >= 0 (0 = off)");
   requireConfig(min_horizontal_inliers >= 3, p + "min_horizontal_inliers", "must be >= 3");
 }
 

@@ -12,9 +12,9 @@ void WallAssociationConfig::validate() const {
   const std::string p = "walls.association.";
   requireConfig(max_normal_angle_deg > 0.0 && max_normal_angle_deg < 90.0,
                 p + "max_normal_angle_deg", "must be in (0, 90)");
-  requireConfig(max_plane_distance > 0.0, p + "max_plane_distance", "must be > 0");
-  requireConfig(max_gap >= 0.0, p + "max_gap", "must be >= 0");
-  requireConfig(min_wall_length >= 0.0, p + "min_wall_length", "must be >= 0");
+  requireConfig(max_plane_distance > 0.0, p + "max_plane_distance_m", "must be > 0");
+  requireConfig(max_gap >= 0.0, p + "max_gap_m", "must be >= 0");
+  requireConfig(min_wall_length >= 0.0, p + "min_wall_length_m", "must be >= 0");
 }
 
 namespace {
