@@ -138,6 +138,9 @@ struct WallExtractionResult {
   double time_ms = 0.0;
 };
 
+/// extract() is const and safe to call from several threads: its working buffers (a voxel key
+/// indexer, the downsampled points, the sampling cells) are per thread (thread_local in the .cpp)
+/// and kept between calls, since fresh multi-megabyte allocations cost more than the work on them.
 class WallExtractor {
  public:
   /// Validates the configuration (throws ConfigError).
