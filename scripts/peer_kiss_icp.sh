@@ -13,6 +13,7 @@ set -euo pipefail
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)"
 source "$REPO/scripts/env.sh"
 tacs_source_ws
+make -C "$TACS_WS/build" -j"$(nproc)" bench_real_odometry >/dev/null  # not in the default target
 KISS="$(cd "${1:?KISS_ICP_SRC}" && pwd -P)"
 SOPHUS="$(cd "${2:?SOPHUS_SRC}" && pwd -P)"
 OUT="${3:-$REPO/results/real}"

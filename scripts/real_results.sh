@@ -7,6 +7,7 @@ set -euo pipefail
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)"
 source "$REPO/scripts/env.sh"
 tacs_source_ws
+make -C "$TACS_WS/build" -j"$(nproc)" bench_real_odometry >/dev/null  # not in the default target
 OUT="${1:-$REPO/results/real}"
 DATA="$(tacs_balm_dir)"
 WORK="$(mktemp -d)"

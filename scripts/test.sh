@@ -9,7 +9,7 @@ bash "$REPO/scripts/setup.sh"
 tacs_source_ws
 cd "$TACS_WS"
 rm -rf build/test_results
-catkin_make -j"$(nproc)" tests >/dev/null
+catkin_make -j"$(nproc)" tests benchmarks >/dev/null
 status=0
 (cd build && ctest --output-on-failure) || status=$?
 catkin_test_results build/test_results || status=$?
