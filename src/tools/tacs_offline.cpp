@@ -3,7 +3,6 @@
 #include <pcl/common/transforms.h>
 
 #include <atomic>
-#include <cctype>
 #include <csignal>
 #include <iomanip>
 #include <iostream>

@@ -28,6 +28,7 @@ class Backend {
   void addKeyframe(uint32_t id, double stamp, const Pose3& T_odom_base,
                    const Matrix6d& information);
   bool hasKeyframe(uint32_t id) const { return keyframes_.count(id) > 0; }
+  size_t keyframeCount() const { return keyframes_.size(); }
 
   /// Walls seen from keyframe `id` (base frame). Returns the landmark id of each observation.
   /// `seen_over` are the surfaces the extractor saw over (WallExtractionResult::seen_over): the

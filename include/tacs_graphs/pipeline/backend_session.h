@@ -31,6 +31,9 @@ struct KeyframeWalls {
 
 struct BackendSessionOptions {
   size_t max_pending_keyframes = 300;  // wall/loop messages waiting for this many keyframes at most
+  /// Keep the measurement journal (journal(), save(), recover()): the backend node's crash
+  /// safety. The offline pipeline, which never restarts, keeps none.
+  bool keep_journal = true;
 };
 
 class BackendSession {
@@ -78,7 +81,7 @@ class BackendSession {
   const Backend& backend() const { return backend_; }
   const KeyframeClouds& keyframeClouds() const { return clouds_.clouds(); }
   std::map<uint32_t, uint32_t> wallObservationCounts() const;
-  size_t keyframeCount() const { return journal_keyframes_.size(); }
+  size_t keyframeCount() const { return backend_.keyframeCount(); }
   /// The highest keyframe id taken (0 before the first).
   uint32_t newestKeyframe() const { return newest_keyframe_; }
   size_t pendingCount() const;

@@ -117,11 +117,13 @@ BackendSession::Outcome BackendSession::addKeyframe(uint32_t id, double stamp,
   backend_.addKeyframe(id, stamp, T_odom_base, information);
   clouds_.add(id, cloud, backend_);
   newest_keyframe_ = std::max(newest_keyframe_, id);
-  const nlohmann::json entry = {{"id", id},
-                                {"stamp", stamp},
-                                {"odom_pose", poseToJson(T_odom_base)},
-                                {"information", matrixToJson(information)}};
-  journal_keyframes_.push_back(entry.dump());
+  if (options_.keep_journal) {
+    const nlohmann::json entry = {{"id", id},
+                                  {"stamp", stamp},
+                                  {"odom_pose", poseToJson(T_odom_base)},
+                                  {"information", matrixToJson(information)}};
+    journal_keyframes_.push_back(entry.dump());
+  }
   flushPending(id);
   dropStalePending();
   return Outcome::kAdded;
@@ -141,6 +143,7 @@ BackendSession::Outcome BackendSession::addWalls(uint32_t keyframe_id, const Key
   if (!walls_taken_.insert(keyframe_id).second) return Outcome::kDuplicate;
   if (walls.walls.empty() && walls.seen_over.empty()) return Outcome::kAdded;
   backend_.addWallObservations(keyframe_id, walls.walls, walls.seen_over);
+  if (!options_.keep_journal) return Outcome::kAdded;
   nlohmann::json entry = {{"keyframe", keyframe_id}, {"walls", nlohmann::json::array()}};
   for (const WallSegment& w : walls.walls) entry["walls"].push_back(wallToJson(w));
   if (!walls.seen_over.empty()) {
@@ -158,6 +161,7 @@ BackendSession::Outcome BackendSession::addLoop(const LoopEdge& edge, const Matr
   }
   if (!loops_taken_.emplace(edge.from, edge.to).second) return Outcome::kDuplicate;
   backend_.addLoopClosure(edge.from, edge.to, edge.relativePose(), information, edge.score);
+  if (!options_.keep_journal) return Outcome::kAdded;
   const nlohmann::json entry = {{"from", edge.from},
                                 {"to", edge.to},
                                 {"relative_pose", poseToJson(edge.relativePose())},

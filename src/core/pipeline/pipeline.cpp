@@ -18,7 +18,12 @@ Pipeline::Pipeline(const PipelineConfig& config, const Pose3& T_base_sensor)
       leveller_(config_.traversability.find_floor_under_base),
       wall_extractor_(config_.walls.extraction),
       traversability_mapper_(config_.traversability),
-      backend_(config_, BackendSessionOptions()),
+      backend_(config_,
+               [] {
+                 BackendSessionOptions options;
+                 options.keep_journal = false;  // one process that never restarts
+                 return options;
+               }()),
       rooms_(config_, RoomSegmentationOptions(), T_base_sensor),
       loops_(config_.loop_closure) {}
 
