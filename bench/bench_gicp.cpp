@@ -3,7 +3,8 @@
 //
 //   bench_gicp [--data DIR] [--reps N] [--threads N] [--voxel M]
 // DIR holds hdl32_scan_pair/; without --data the set is found as the tests find it (README "Test
-// data").
+// data"). Built with TACS_SMALL_GICP_INCLUDE_DIR (scripts/peer_small_gicp.sh), it also measures
+// small_gicp's GICP on the same inputs, interleaved with ours round by round.
 // PCL's GICP instantiates Eigen code (Umeyama) that trips GCC 12's -Warray-bounds.
 #pragma GCC diagnostic ignored "-Warray-bounds"
 
@@ -24,6 +25,11 @@
 #include "tacs_graphs/common/timing.h"
 #include "tacs_graphs/odometry/gicp.h"
 #include "tacs_graphs/odometry/preprocess.h"
+
+#ifdef TACS_HAVE_SMALL_GICP
+#include <small_gicp/pcl/pcl_registration.hpp>
+#include <small_gicp/pcl/pcl_registration_impl.hpp>
+#endif
 
 namespace {
 
@@ -59,6 +65,77 @@ Row measure(const std::string& method, int reps, const std::function<Pose3()>& a
     row.min_ms = std::min(row.min_ms, ms);
   }
   return row;
+}
+
+// Runs the methods round-robin, reps rounds (after one warm-up round), so a load spike on the
+// shared cores hits all of them alike; min and mean per method.
+std::vector<Row> measureInterleaved(
+    const std::vector<std::pair<std::string, std::function<Pose3()>>>& methods, int reps) {
+  std::vector<Row> rows(methods.size());
+  for (size_t m = 0; m < methods.size(); ++m) {
+    rows[m].method = methods[m].first;
+    rows[m].result = methods[m].second();
+    rows[m].min_ms = 1e300;
+  }
+  for (int i = 0; i < reps; ++i) {
+    for (size_t m = 0; m < methods.size(); ++m) {
+      tacs::Stopwatch watch;
+      rows[m].result = methods[m].second();
+      const double ms = watch.elapsedMs();
+      rows[m].mean_ms += ms / reps;
+      rows[m].min_ms = std::min(rows[m].min_ms, ms);
+    }
+  }
+  return rows;
+}
+
+void printRows(const std::vector<Row>& rows, const Pose3& truth) {
+  std::printf(
+      "| method | time per alignment (ms, mean) | min (ms) | translation error (cm) | "
+      "rotation error (deg) |\n|---|---|---|---|---|\n");
+  for (const Row& row : rows) {
+    const Pose3 err = truth.inverse() * row.result;
+    std::printf("| %s | %.1f | %.1f | %.2f | %.3f |\n", row.method.c_str(), row.mean_ms, row.min_ms,
+                100.0 * err.translation().norm(),
+                Eigen::AngleAxisd(err.linear()).angle() * 180.0 / M_PI);
+  }
+}
+
+// Ours and small_gicp's GICP (when built with its headers) at 1 and 2 threads, everything built
+// per alignment (KD-trees and covariances of both clouds), same k, gate and stopping rule.
+std::vector<Row> headToHead(const tacs::PointCloud::Ptr& target,
+                            const tacs::PointCloud::Ptr& source, const tacs::GicpConfig& base,
+                            int reps) {
+  std::vector<std::pair<std::string, std::function<Pose3()>>> methods;
+  for (int threads : {1, 2}) {
+    tacs::GicpConfig config = base;
+    config.num_threads = threads;
+    methods.emplace_back("tacs Gicp, " + std::to_string(threads) + " thread(s)", [=] {
+      tacs::Gicp gicp(config);
+      gicp.setTarget(*target);
+      gicp.setSource(*source);
+      return gicp.align(Pose3::Identity()).T_target_source;
+    });
+#ifdef TACS_HAVE_SMALL_GICP
+    methods.emplace_back(
+        "small_gicp RegistrationPCL GICP, " + std::to_string(threads) + " thread(s)", [=] {
+          small_gicp::RegistrationPCL<pcl::PointXYZI, pcl::PointXYZI> reg;
+          reg.setRegistrationType("GICP");
+          reg.setNumThreads(threads);
+          reg.setNumNeighborsForCovariance(config.k_neighbors);
+          reg.setMaxCorrespondenceDistance(config.max_correspondence_distance_m);
+          reg.setMaximumIterations(config.max_iterations);
+          reg.setTransformationEpsilon(config.translation_eps_m);
+          reg.setRotationEpsilon(config.rotation_eps_deg * M_PI / 180.0);
+          reg.setInputTarget(target);
+          reg.setInputSource(source);
+          pcl::PointCloud<pcl::PointXYZI> aligned;
+          reg.align(aligned);
+          return Pose3(reg.getFinalTransformation().cast<double>());
+        });
+#endif
+  }
+  return measureInterleaved(methods, reps);
 }
 
 }  // namespace
@@ -166,15 +243,17 @@ int main(int argc, char** argv) {
               tacs::bench::openMpWaitPolicy().c_str(), tacs::bench::loadAverage().c_str());
   std::printf("threads: %d (machine: %d hardware threads; PCL's GICP is single-threaded)\n\n",
               threads, omp_get_num_procs());
+  printRows(rows, truth);
   std::printf(
-      "| method | time per alignment (ms, mean) | min (ms) | translation error (cm) | "
-      "rotation error (deg) |\n|---|---|---|---|---|\n");
-  for (const Row& row : rows) {
-    const Pose3 err = truth.inverse() * row.result;
-    std::printf("| %s | %.1f | %.1f | %.2f | %.3f |\n", row.method.c_str(), row.mean_ms, row.min_ms,
-                100.0 * err.translation().norm(),
-                Eigen::AngleAxisd(err.linear()).angle() * 180.0 / M_PI);
-  }
+      "\nHead to head, interleaved rounds (KD-trees and covariances of both clouds built per "
+      "alignment; same k, gate, iterations and stopping rule)%s:\n\n",
+#ifdef TACS_HAVE_SMALL_GICP
+      ""
+#else
+      " [small_gicp rows absent: build with scripts/peer_small_gicp.sh]"
+#endif
+  );
+  printRows(headToHead(target, source, config, reps), truth);
   const tacs::GicpResult once = gicp.align(guess);
   std::printf("\ntacs Gicp: %d iterations, converged %d, %zu inliers (%.0f %%), fitness %.4f m^2\n",
               once.iterations, once.converged, once.inliers, 100.0 * once.inlier_ratio,

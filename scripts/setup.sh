@@ -15,7 +15,7 @@ PACKAGES=(
   build-essential cmake python3-catkin-pkg
   ros-core-dev python3-rostest python3-rosbag python3-sensor-msgs rosbash python3-std-srvs
   libtf2-ros-dev libtf2-eigen-dev libpcl-conversions-dev
-  libpcl-dev libceres-dev liboctomap-dev libnanoflann-dev nlohmann-json3-dev libyaml-cpp-dev libpng-dev
+  libpcl-dev libceres-dev liboctomap-dev nlohmann-json3-dev libyaml-cpp-dev libpng-dev
   googletest libgtest-dev
 )
 

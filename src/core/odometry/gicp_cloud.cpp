@@ -2,67 +2,16 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <nanoflann.hpp>
 
 #include "tacs_graphs/odometry/gicp.h"
+#include "tacs_graphs/odometry/kd_tree.h"
 #include "tacs_graphs/odometry/parallel.h"
 
 namespace tacs {
 
-namespace {
-
-// nanoflann reads points through this adaptor. The tree works in float: half the memory
-// traffic of double, and centimetre-level scan data loses nothing.
-struct PointsAdaptor {
-  std::vector<Eigen::Vector3f> points;
-  size_t kdtree_get_point_count() const { return points.size(); }
-  float kdtree_get_pt(size_t i, size_t dim) const { return points[i][dim]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-
-// Keeps only the closest point, and prunes the search with the gating radius from the start.
-class NearestWithin {
- public:
-  explicit NearestWithin(float max_dist_sq) : worst_(max_dist_sq) {}
-  NearestWithin(float dist_sq, uint32_t index) : worst_(dist_sq), index_(index), found_(true) {}
-  bool addPoint(float dist, uint32_t index) {
-    if (dist < worst_) {
-      worst_ = dist;
-      index_ = index;
-      found_ = true;
-    }
-    return true;
-  }
-  float worstDist() const { return worst_; }
-  bool full() const { return found_; }
-  int64_t index() const { return found_ ? int64_t{index_} : -1; }
-
- private:
-  float worst_;
-  uint32_t index_ = 0;
-  bool found_ = false;
-};
-
-}  // namespace
-
 struct GicpCloud::Index {
-  using Tree =
-      nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointsAdaptor>,
-                                          PointsAdaptor, 3, uint32_t>;
-  // Leaves of 20 points: a shallower tree builds faster and the searches stay as fast
-  // (bench_gicp: 1-thread alignment 35 -> 31 ms against leaves of 10).
-  explicit Index(const std::vector<Eigen::Vector3d>& points)
-      : adaptor{toFloat(points)}, tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(20)) {}
-  static std::vector<Eigen::Vector3f> toFloat(const std::vector<Eigen::Vector3d>& points) {
-    std::vector<Eigen::Vector3f> out(points.size());
-    for (size_t i = 0; i < points.size(); ++i) out[i] = points[i].cast<float>();
-    return out;
-  }
-  PointsAdaptor adaptor;  // declared before the tree, which reads it while being built
-  Tree tree;
+  explicit Index(const std::vector<Eigen::Vector3d>& points) : tree(points) {}
+  KdTree3 tree;
 };
 
 GicpCloud::~GicpCloud() = default;
@@ -143,16 +92,21 @@ int64_t GicpCloud::nearest(const Eigen::Vector3d& query, double max_dist_sq, dou
                            int64_t hint) const {
   if (points_.empty()) return -1;
   const Eigen::Vector3f q = query.cast<float>();
-  NearestWithin result(static_cast<float>(max_dist_sq));
+  float bound = static_cast<float>(max_dist_sq);
+  int64_t best = -1;
   if (hint >= 0 && static_cast<size_t>(hint) < points_.size()) {
     // Strictly closer points only are taken after this, so the bound must be the hint's own
     // distance in the tree's float arithmetic.
-    const float hint_sq = (index_->adaptor.points[hint] - q).squaredNorm();
-    if (hint_sq < max_dist_sq) result = NearestWithin(hint_sq, static_cast<uint32_t>(hint));
+    const Eigen::Vector3f h = index_->tree.point(static_cast<uint32_t>(hint));
+    const float dx = h.x() - q.x(), dy = h.y() - q.y(), dz = h.z() - q.z();
+    const float hint_sq = dx * dx + dy * dy + dz * dz;
+    if (hint_sq < bound) bound = hint_sq, best = hint;
   }
-  index_->tree.findNeighbors(result, q.data(), nanoflann::SearchParams());
-  if (dist_sq) *dist_sq = result.worstDist();
-  return result.index();
+  float found_sq = bound;
+  const int64_t found = index_->tree.nearest(q, bound, &found_sq);
+  if (found >= 0) best = found;
+  if (dist_sq) *dist_sq = found_sq;
+  return best;
 }
 
 void GicpCloud::knn(const Eigen::Vector3d& query, int k, std::vector<uint32_t>* indices,
@@ -163,8 +117,7 @@ void GicpCloud::knn(const Eigen::Vector3d& query, int k, std::vector<uint32_t>* 
   if (want == 0) return;
   thread_local std::vector<float> dists;
   dists.resize(want);
-  const Eigen::Vector3f q = query.cast<float>();
-  const size_t found = index_->tree.knnSearch(q.data(), want, indices->data(), dists.data());
+  const size_t found = index_->tree.knn(query.cast<float>(), want, indices->data(), dists.data());
   indices->resize(found);
   dist_sq->assign(dists.begin(), dists.begin() + found);
 }

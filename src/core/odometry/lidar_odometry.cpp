@@ -7,6 +7,7 @@
 
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/timing.h"
+#include "tacs_graphs/odometry/parallel.h"
 
 namespace tacs {
 
@@ -178,12 +179,20 @@ GicpResult LidarOdometry::recoverFromHypotheses(const PointCloud& cloud,
       starts.push_back(start);
     }
   }
-  for (const Pose3& start : starts) {
-    const Pose3 coarse =
-        align(sparse, wide_m, start, config_.gicp.robust_plane_distance_m).T_target_source;
-    const double coarse_fit = fitOf(sparse, coarse);
-    if (coarse_fit <= best_fit) continue;  // the fine pass rarely gains what the coarse lacks
-    GicpResult fine = align(scan, config_.gicp.max_correspondence_distance_m, coarse,
+  // The coarse alignments are independent and each too small to split across threads
+  // (parallel.h), so they run side by side; the fine passes follow in the listed order.
+  const int n = static_cast<int>(starts.size());
+  std::vector<Pose3> coarse(starts.size());
+  std::vector<double> coarse_fit(starts.size());
+#pragma omp parallel for num_threads(resolveThreads(config_.gicp.num_threads)) schedule(dynamic, 1)
+  for (int i = 0; i < n; ++i) {
+    coarse[i] =
+        align(sparse, wide_m, starts[i], config_.gicp.robust_plane_distance_m).T_target_source;
+    coarse_fit[i] = fitOf(sparse, coarse[i]);
+  }
+  for (int i = 0; i < n; ++i) {
+    if (coarse_fit[i] <= best_fit) continue;  // the fine pass rarely gains what the coarse lacks
+    GicpResult fine = align(scan, config_.gicp.max_correspondence_distance_m, coarse[i],
                             config_.gicp.robust_plane_distance_m);
     const double fit = fitOf(scan, fine.T_target_source);
     if (fit > best_fit) best_fit = fit, best = fine;

@@ -1,0 +1,184 @@
+#include "tacs_graphs/odometry/kd_tree.h"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+
+namespace tacs {
+
+namespace {
+
+inline float squaredDistance(const float* a, const float* b) {
+  const float dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+  return dx * dx + dy * dy + dz * dz;
+}
+
+// The closest point strictly below a bound.
+struct NearestResult {
+  float worst;
+  int64_t index = -1;
+  float bound() const { return worst; }
+  void offer(float d, uint32_t id) {
+    if (d < worst) worst = d, index = id;
+  }
+};
+
+// The k closest points, sorted; a point is taken only when strictly closer than the k-th.
+struct KnnResult {
+  size_t k;
+  uint32_t* ids;
+  float* dist;
+  size_t count = 0;
+  float bound() const { return count < k ? std::numeric_limits<float>::max() : dist[k - 1]; }
+  void offer(float d, uint32_t id) {
+    if (d >= bound()) return;
+    size_t i = count < k ? count++ : k - 1;
+    for (; i > 0 && dist[i - 1] > d; --i) dist[i] = dist[i - 1], ids[i] = ids[i - 1];
+    dist[i] = d;
+    ids[i] = id;
+  }
+};
+
+}  // namespace
+
+KdTree3::KdTree3(const std::vector<Eigen::Vector3d>& points) {
+  const uint32_t n = static_cast<uint32_t>(points.size());
+  std::vector<uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  nodes_.reserve(2 * (n / kLeafSize + 1));
+  lo_.setConstant(std::numeric_limits<float>::max());
+  hi_ = -lo_;
+  for (const Eigen::Vector3d& p : points) {
+    lo_ = lo_.cwiseMin(p.cast<float>());
+    hi_ = hi_.cwiseMax(p.cast<float>());
+  }
+  if (n > 0) build(order, 0, n, points);
+  xyz_.resize(3 * static_cast<size_t>(n));
+  where_.resize(n);
+  for (uint32_t pos = 0; pos < n; ++pos) {
+    const Eigen::Vector3f p = points[order[pos]].cast<float>();
+    std::copy(p.data(), p.data() + 3, &xyz_[3 * static_cast<size_t>(pos)]);
+    where_[order[pos]] = pos;
+  }
+  ids_ = std::move(order);
+}
+
+uint32_t KdTree3::build(std::vector<uint32_t>& order, uint32_t begin, uint32_t end,
+                        const std::vector<Eigen::Vector3d>& points) {
+  const uint32_t index = static_cast<uint32_t>(nodes_.size());
+  nodes_.emplace_back();
+  if (end - begin <= static_cast<uint32_t>(kLeafSize)) {
+    nodes_[index].axis = kLeaf;
+    nodes_[index].a = begin;
+    nodes_[index].b = end;
+    return index;
+  }
+  // Split the widest axis at the middle of the points' extent (not at their median): cells stay
+  // compact where the cloud is dense and large where it is sparse, which prunes a search better
+  // on LiDAR clouds than a balanced tree of long thin cells.
+  Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::max());
+  Eigen::Vector3f hi = -lo;
+  for (uint32_t i = begin; i < end; ++i) {
+    const Eigen::Vector3f p = points[order[i]].cast<float>();
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  int axis = 0;
+  (hi - lo).maxCoeff(&axis);
+  if (!(hi[axis] > lo[axis])) {  // all points coincide: one leaf, whatever its size
+    nodes_[index].axis = kLeaf;
+    nodes_[index].a = begin;
+    nodes_[index].b = end;
+    return index;
+  }
+  auto coordinate = [&](uint32_t i) { return static_cast<float>(points[i][axis]); };
+  const float cut = 0.5f * (lo[axis] + hi[axis]);
+  uint32_t mid =
+      static_cast<uint32_t>(std::partition(order.begin() + begin, order.begin() + end,
+                                           [&](uint32_t i) { return coordinate(i) < cut; }) -
+                            order.begin());
+  if (mid == begin || mid == end) {  // extent of a few float steps: the cut rounds to an end
+    mid = begin + (end - begin) / 2;
+    std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
+                     [&](uint32_t i, uint32_t j) { return coordinate(i) < coordinate(j); });
+  }
+  // The children's extents on the split axis: a far child whose points start well beyond the
+  // cut is pruned sooner.
+  float left_max = -std::numeric_limits<float>::max();
+  float right_min = std::numeric_limits<float>::max();
+  for (uint32_t i = begin; i < mid; ++i) left_max = std::max(left_max, coordinate(order[i]));
+  for (uint32_t i = mid; i < end; ++i) right_min = std::min(right_min, coordinate(order[i]));
+  const uint32_t left = build(order, begin, mid, points);
+  const uint32_t right = build(order, mid, end, points);
+  Node& node = nodes_[index];  // after the recursion: nodes_ may have grown
+  node.left_max = left_max;
+  node.right_min = right_min;
+  node.axis = static_cast<uint32_t>(axis);
+  node.a = left;
+  node.b = right;
+  return index;
+}
+
+template <class Result>
+void KdTree3::search(uint32_t index, const float* q, float* offset, float cell_sq,
+                     Result& result) const {
+  const Node& node = nodes_[index];
+  if (node.axis == kLeaf) {
+    for (uint32_t pos = node.a; pos < node.b; ++pos) {
+      result.offer(squaredDistance(q, &xyz_[3 * static_cast<size_t>(pos)]), ids_[pos]);
+    }
+    return;
+  }
+  // The left child's points have coordinates <= left_max on this axis, the right child's
+  // >= right_min; the query descends first into the side it is nearer to. The far child's cell
+  // lies at least as far as the near cell's bound with this axis's gap replaced (Arya and
+  // Mount's incremental distance): it is searched only when it may hold a closer point.
+  const float past_left = q[node.axis] - node.left_max;
+  const float past_right = q[node.axis] - node.right_min;
+  const bool left_first = past_left + past_right < 0.0f;
+  const uint32_t near = left_first ? node.a : node.b;
+  const uint32_t far = left_first ? node.b : node.a;
+  const float gap = left_first ? std::max(0.0f, -past_right) : std::max(0.0f, past_left);
+  search(near, q, offset, cell_sq, result);
+  const float old = offset[node.axis];
+  const float far_sq = cell_sq - old * old + gap * gap;
+  if (far_sq < result.bound()) {
+    offset[node.axis] = gap;
+    search(far, q, offset, far_sq, result);
+    offset[node.axis] = old;
+  }
+}
+
+int64_t KdTree3::nearest(const Eigen::Vector3f& query, float bound_sq, float* dist_sq) const {
+  NearestResult result{bound_sq};
+  float offset[3];
+  const float cell_sq = rootGap(query, offset);
+  if (!nodes_.empty() && cell_sq < result.bound()) search(0, query.data(), offset, cell_sq, result);
+  if (dist_sq) *dist_sq = result.worst;
+  return result.index;
+}
+
+size_t KdTree3::knn(const Eigen::Vector3f& query, size_t k, uint32_t* indices,
+                    float* dist_sq) const {
+  KnnResult result{k, indices, dist_sq};
+  float offset[3];
+  const float cell_sq = rootGap(query, offset);
+  if (k > 0 && !nodes_.empty()) search(0, query.data(), offset, cell_sq, result);
+  return result.count;
+}
+
+float KdTree3::rootGap(const Eigen::Vector3f& query, float* offset) const {
+  float sum = 0.0f;
+  for (int d = 0; d < 3; ++d) {
+    offset[d] = std::max({0.0f, lo_[d] - query[d], query[d] - hi_[d]});
+    sum += offset[d] * offset[d];
+  }
+  return sum;
+}
+
+Eigen::Vector3f KdTree3::point(uint32_t i) const {
+  const float* p = &xyz_[3 * static_cast<size_t>(where_[i])];
+  return Eigen::Vector3f(p[0], p[1], p[2]);
+}
+
+}  // namespace tacs
