@@ -127,6 +127,66 @@ TEST(FactorGraph, WallObservationsCorrectHeadingDrift) {
   EXPECT_NEAR(g.wall(1).d, 11.0, 0.1);
 }
 
+// Wall w of the rectangle (and a fifth, x = 4.5 facing -x, seen only late) as seen from `pose`.
+void observeWall(FactorGraph* g, uint32_t keyframe, uint32_t w, const WallPlane& wall,
+                 const Pose3& pose) {
+  const Eigen::Vector3d n_b = pose.rotation().transpose() * wall.normal();
+  g->addWallObservation(keyframe, w, n_b, wall.d + wall.normal().dot(pose.translation()));
+}
+
+// A window solve moves the newest keyframes and the wall only they saw; the older keyframes and
+// the walls they saw stay exactly where the last full solve put them. A window as large as the
+// graph is the full solve.
+TEST(FactorGraph, AWindowSolveMovesOnlyTheNewestKeyframesAndTheWallsOnlyTheySaw) {
+  const auto truth = rectangleLoop();
+  const auto odom = driftingOdometry(truth);
+  const size_t old_count = truth.size() - 6;
+  const std::vector<WallPlane> walls = {
+      {0.0, 1.0}, {M_PI, 11.0}, {M_PI / 2, 1.0}, {-M_PI / 2, 7.0}, {M_PI, 4.5}};
+  FactorGraph g{BackendConfig()};
+  addOdometry(&g, std::vector<Pose3>(odom.begin(), odom.begin() + old_count));
+  for (uint32_t w = 0; w < 4; ++w) g.addWall(w, walls[w]);
+  for (size_t i = 0; i < old_count; ++i) {
+    for (uint32_t w = 0; w < 4; ++w) observeWall(&g, i, w, walls[w], truth[i]);
+  }
+  ASSERT_TRUE(g.optimize().usable);
+  std::vector<Pose3> held;
+  for (size_t i = 0; i < old_count; ++i) held.push_back(g.keyframePose(i));
+  std::vector<WallPlane> held_walls;
+  for (uint32_t w = 0; w < 4; ++w) held_walls.push_back(g.wall(w));
+  // The newest keyframes start from the drifting odometry; wall 4 starts 0.3 m off.
+  for (size_t i = old_count; i < truth.size(); ++i) {
+    g.addKeyframe(i, g.keyframePose(i - 1) * odom[i - 1].inverse() * odom[i]);
+    g.addRelativePose(i - 1, i, odom[i - 1].inverse() * odom[i], Matrix6d::Identity() * 100, false);
+  }
+  g.addWall(4, {M_PI, 4.8});
+  for (size_t i = old_count; i < truth.size(); ++i) {
+    for (uint32_t w = 0; w < 5; ++w) observeWall(&g, i, w, walls[w], truth[i]);
+  }
+  FactorGraph whole = g, as_large = g;
+  const OptimizationReport report = g.optimize(truth.size() - old_count);
+  ASSERT_TRUE(report.usable);
+  EXPECT_TRUE(report.window);
+  for (size_t i = 0; i < old_count; ++i) {
+    EXPECT_TRUE(g.keyframePose(i).isApprox(held[i], 0.0)) << "keyframe " << i;
+  }
+  for (uint32_t w = 0; w < 4; ++w) {
+    EXPECT_EQ(g.wall(w).d, held_walls[w].d) << "wall " << w;
+    EXPECT_EQ(g.wall(w).theta, held_walls[w].theta) << "wall " << w;
+  }
+  EXPECT_NEAR(g.wall(4).d, 4.5, 0.05);
+  for (size_t i = old_count; i < truth.size(); ++i) {
+    EXPECT_LT((g.keyframePose(i).translation() - truth[i].translation()).norm(), 0.1) << i;
+  }
+  // A window as large as the graph is the full solve, to the bit.
+  ASSERT_TRUE(whole.optimize().usable);
+  const OptimizationReport large = as_large.optimize(truth.size());
+  EXPECT_FALSE(large.window);
+  for (size_t i = 0; i < truth.size(); ++i) {
+    EXPECT_TRUE(as_large.keyframePose(i).isApprox(whole.keyframePose(i), 0.0)) << i;
+  }
+}
+
 // Observations from keyframe 0 at the (fixed) origin hold the walls where they are.
 void observeFromOrigin(FactorGraph* g, const std::vector<uint32_t>& walls) {
   for (uint32_t w : walls) g->addWallObservation(0, w, g->wall(w).normal(), g->wall(w).d);

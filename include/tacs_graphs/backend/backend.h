@@ -54,9 +54,10 @@ class Backend {
   bool addWallToWall(uint32_t wall_a, uint32_t wall_b);
 
   /// Optimises when the schedule says so (every `optimize_every_keyframes` keyframes, and after a
-  /// loop closure). Returns the report of the optimisation, if one ran.
+  /// loop closure): a full solve, or with backend.window_keyframes a window solve between full
+  /// ones. Returns the report of the optimisation, if one ran.
   std::optional<OptimizationReport> optimizeIfDue();
-  /// Optimises now, then folds duplicate walls.
+  /// Optimises the whole graph now, then folds duplicate walls.
   OptimizationReport optimize();
 
   size_t roomCount() const { return rooms_.size(); }
@@ -82,6 +83,8 @@ class Backend {
     Pose3 T_odom_base;
   };
 
+  /// One optimisation (0: full; else a window of that many keyframes), then the landmarks follow.
+  OptimizationReport run(size_t window_keyframes);
   void renameRoomWall(uint32_t removed, uint32_t kept);
   void writeRooms(SceneGraph* graph) const;
 
@@ -94,6 +97,7 @@ class Backend {
   std::optional<uint32_t> last_keyframe_;
   std::vector<LoopEdge> loops_;
   int keyframes_since_optimization_ = 0;
+  size_t keyframes_since_full_solve_ = 0;
   bool loop_pending_ = false;
   double total_optimization_ms_ = 0.0;
   int optimizations_ = 0;

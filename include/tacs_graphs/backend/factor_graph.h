@@ -1,13 +1,15 @@
 // The hierarchical factor graph (paper Sec. III, Fig. 1): keyframe poses, wall planes and room
 // centres as Ceres parameter blocks; odometry, loop, keyframe-wall, room and wall-to-wall factors.
 // The problem is rebuilt from the stored measurements at every optimisation, so walls and rooms can
-// be merged or removed between optimisations without bookkeeping inside Ceres.
+// be merged or removed between optimisations without bookkeeping inside Ceres; a window solve
+// builds only the part around the newest keyframes, so its cost does not grow with the graph.
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -44,6 +46,13 @@ struct BackendConfig {
   TrustRegion trust_region = TrustRegion::kDogleg;
   int num_threads = 1;               // Ceres threads (the other core runs the front end)
   int optimize_every_keyframes = 1;  // optimise after this many new keyframes (and on each loop)
+  // Window solves: between full solves, only the newest window_keyframes keyframes and the walls
+  // no older keyframe has seen move; the rest is held (0: every optimisation is a full solve).
+  // A full solve follows each loop closure, the end of a run, and every time the keyframes added
+  // since the last one reach full_solve_fraction of the graph, so the cost per keyframe stays
+  // bounded as the graph grows.
+  int window_keyframes = 0;
+  double full_solve_fraction = 0.1;
   // Roll and pitch of the first keyframe, which anchors the map: 0 holds them as measured; > 0
   // lets the vertical walls level the map within this prior [rad].
   double anchor_tilt_sigma = 0.05;
@@ -63,6 +72,8 @@ struct BackendConfig {
     v("trust_region", trust_region);
     v("num_threads", num_threads);
     v("optimize_every_keyframes", optimize_every_keyframes);
+    v("window_keyframes", window_keyframes);
+    v("full_solve_fraction", full_solve_fraction);
   }
   void validate() const;
 };
@@ -74,7 +85,14 @@ struct OptimizationReport {
   double final_cost = 0.0;
   double time_ms = 0.0;
   size_t residual_blocks = 0;
+  bool window = false;  // a window solve (BackendConfig::window_keyframes), not a full one
 };
+
+/// The window of the optimisation due now (FactorGraph::optimize): 0, a full solve, after a loop
+/// closure, when window solves are off, or once the keyframes added since the last full solve
+/// reach full_solve_fraction of the graph (and at least the window); else window_keyframes.
+size_t optimizationWindow(const BackendConfig& config, size_t keyframes,
+                          size_t keyframes_since_full_solve, bool loop_pending);
 
 /// A vertical wall plane n . p + d = 0, n = (cos theta, sin theta, 0).
 struct WallPlane {
@@ -115,7 +133,10 @@ class FactorGraph {
                const std::optional<Eigen::Vector2d>& corridor_anchor);
   void removeRoom(uint32_t id);
 
-  OptimizationReport optimize();
+  /// Optimises the whole graph (window_keyframes = 0 or at least the graph's size), or only the
+  /// newest window_keyframes keyframes and the walls no older keyframe has seen, holding the
+  /// rest; factors between held blocks are left out.
+  OptimizationReport optimize(size_t window_keyframes = 0);
 
   Pose3 keyframePose(uint32_t id) const;
   Eigen::Vector3d keyframePosition(uint32_t id) const;
@@ -126,10 +147,26 @@ class FactorGraph {
   size_t roomCount() const { return rooms_.size(); }
 
  private:
-  // The steps of optimize(): parameter blocks and gauge, then the factors by layer.
-  void addKeyframeBlocks(ceres::Problem* problem, ceres::Manifold* quaternion);
-  void addPoseAndWallFactors(ceres::Problem* problem);
-  void addRoomFactors(ceres::Problem* problem);
+  // Which blocks an optimisation moves: everything (a full solve), or the newest keyframes and
+  // the walls no older keyframe has seen (a window solve).
+  struct Scope {
+    bool whole = true;
+    uint32_t first_free_keyframe = 0;
+    std::set<uint32_t> held_walls;
+    bool all() const { return whole; }
+    bool freeKeyframe(uint32_t id) const { return whole || id >= first_free_keyframe; }
+    bool freeWall(uint32_t id) const { return whole || held_walls.count(id) == 0; }
+  };
+  Scope windowScope(size_t window_keyframes) const;
+  // The steps of optimize(): parameter blocks and gauge, then the factors by layer. A held block
+  // enters the problem, constant, only when a factor of a free one needs it.
+  void useKeyframe(ceres::Problem* problem, ceres::Manifold* quaternion, const Scope& scope,
+                   uint32_t id);
+  double* useWall(ceres::Problem* problem, const Scope& scope, uint32_t id);
+  void addKeyframeBlocks(ceres::Problem* problem, ceres::Manifold* quaternion, const Scope& scope);
+  void addPoseAndWallFactors(ceres::Problem* problem, ceres::Manifold* quaternion,
+                             const Scope& scope);
+  void addRoomFactors(ceres::Problem* problem, const Scope& scope);
 
   struct KeyframeState {
     std::array<double, 3> t;

@@ -18,6 +18,7 @@ void Backend::addKeyframe(uint32_t id, double stamp, const Pose3& T_odom_base,
   keyframes_[id] = {stamp, T_odom_base};
   last_keyframe_ = id;
   ++keyframes_since_optimization_;
+  ++keyframes_since_full_solve_;
 }
 
 std::vector<uint32_t> Backend::addWallObservations(uint32_t keyframe_id,
@@ -58,14 +59,18 @@ std::optional<OptimizationReport> Backend::optimizeIfDue() {
   if (!loop_pending_ && keyframes_since_optimization_ < config_.optimize_every_keyframes) {
     return std::nullopt;
   }
-  return optimize();
+  return run(
+      optimizationWindow(config_, keyframes_.size(), keyframes_since_full_solve_, loop_pending_));
 }
 
-OptimizationReport Backend::optimize() {
-  const OptimizationReport report = graph_.optimize();
+OptimizationReport Backend::optimize() { return run(0); }
+
+OptimizationReport Backend::run(size_t window_keyframes) {
+  const OptimizationReport report = graph_.optimize(window_keyframes);
   total_optimization_ms_ += report.time_ms;
   ++optimizations_;
   keyframes_since_optimization_ = 0;
+  keyframes_since_full_solve_ = report.window ? keyframes_since_full_solve_ : 0;
   loop_pending_ = false;
   // Landmarks follow the optimised planes; then walls that now coincide are folded.
   for (const auto& [id, lm] : wall_map_.landmarks()) {

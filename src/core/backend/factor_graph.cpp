@@ -2,6 +2,8 @@
 
 #include <ceres/ceres.h>
 
+#include <algorithm>
+#include <iterator>
 #include <stdexcept>
 
 #include "tacs_graphs/backend/factors.h"
@@ -25,6 +27,17 @@ void BackendConfig::validate() const {
   requireConfig(max_iterations >= 1, "backend.max_iterations", "must be >= 1");
   requireConfig(num_threads >= 1, "backend.num_threads", "must be >= 1");
   requireConfig(optimize_every_keyframes >= 1, "backend.optimize_every_keyframes", "must be >= 1");
+  requireConfig(window_keyframes >= 0, "backend.window_keyframes", "must be >= 0 (0: off)");
+  requireConfig(full_solve_fraction > 0 && full_solve_fraction <= 1, "backend.full_solve_fraction",
+                "must be in (0, 1]");
+}
+
+size_t optimizationWindow(const BackendConfig& config, size_t keyframes,
+                          size_t keyframes_since_full_solve, bool loop_pending) {
+  const size_t window = static_cast<size_t>(config.window_keyframes);
+  if (window == 0 || loop_pending) return 0;
+  const double due = std::max(static_cast<double>(window), config.full_solve_fraction * keyframes);
+  return static_cast<double>(keyframes_since_full_solve) >= due ? 0 : window;
 }
 
 WallPlane WallPlane::fromNormalD(const Eigen::Vector3d& normal, double d) {
@@ -108,12 +121,46 @@ void FactorGraph::setRoom(uint32_t id, const Eigen::Vector2d& center,
 
 void FactorGraph::removeRoom(uint32_t id) { rooms_.erase(id); }
 
-void FactorGraph::addKeyframeBlocks(ceres::Problem* problem, ceres::Manifold* quaternion) {
-  for (auto& [id, kf] : keyframes_) {
-    problem->AddParameterBlock(kf.t.data(), 3);
-    problem->AddParameterBlock(kf.q.data(), 4, quaternion);
+FactorGraph::Scope FactorGraph::windowScope(size_t window_keyframes) const {
+  Scope scope;
+  if (window_keyframes == 0 || window_keyframes >= keyframes_.size()) return scope;  // all free
+  scope.whole = false;
+  auto it = keyframes_.end();
+  std::advance(it, -static_cast<std::ptrdiff_t>(window_keyframes));
+  scope.first_free_keyframe = it->first;
+  for (const auto& o : wall_observations_) {
+    if (!scope.freeKeyframe(o.keyframe)) scope.held_walls.insert(o.wall);
   }
-  if (!anchor_keyframe_) return;
+  return scope;
+}
+
+void FactorGraph::useKeyframe(ceres::Problem* problem, ceres::Manifold* quaternion,
+                              const Scope& scope, uint32_t id) {
+  auto& kf = keyframes_.at(id);
+  if (problem->HasParameterBlock(kf.t.data())) return;
+  problem->AddParameterBlock(kf.t.data(), 3);
+  problem->AddParameterBlock(kf.q.data(), 4, quaternion);
+  if (!scope.freeKeyframe(id)) {
+    problem->SetParameterBlockConstant(kf.t.data());
+    problem->SetParameterBlockConstant(kf.q.data());
+  }
+}
+
+double* FactorGraph::useWall(ceres::Problem* problem, const Scope& scope, uint32_t id) {
+  double* plane = walls_.at(id).data();
+  if (!problem->HasParameterBlock(plane)) {
+    problem->AddParameterBlock(plane, 2);
+    if (!scope.freeWall(id)) problem->SetParameterBlockConstant(plane);
+  }
+  return plane;
+}
+
+void FactorGraph::addKeyframeBlocks(ceres::Problem* problem, ceres::Manifold* quaternion,
+                                    const Scope& scope) {
+  for (const auto& [id, kf] : keyframes_) {
+    if (scope.freeKeyframe(id)) useKeyframe(problem, quaternion, scope, id);
+  }
+  if (!anchor_keyframe_ || !scope.freeKeyframe(*anchor_keyframe_)) return;
   auto& anchor = keyframes_.at(*anchor_keyframe_);
   problem->SetParameterBlockConstant(anchor.t.data());
   if (config_.anchor_tilt_sigma > 0.0) {
@@ -127,8 +174,12 @@ void FactorGraph::addKeyframeBlocks(ceres::Problem* problem, ceres::Manifold* qu
   }
 }
 
-void FactorGraph::addPoseAndWallFactors(ceres::Problem* problem) {
+void FactorGraph::addPoseAndWallFactors(ceres::Problem* problem, ceres::Manifold* quaternion,
+                                        const Scope& scope) {
   for (const auto& e : pose_edges_) {
+    if (!scope.freeKeyframe(e.from) && !scope.freeKeyframe(e.to)) continue;
+    useKeyframe(problem, quaternion, scope, e.from);
+    useKeyframe(problem, quaternion, scope, e.to);
     auto& a = keyframes_.at(e.from);
     auto& b = keyframes_.at(e.to);
     auto* cost = new ceres::AutoDiffCostFunction<RelativePoseFactor, 6, 3, 4, 3, 4>(
@@ -137,50 +188,61 @@ void FactorGraph::addPoseAndWallFactors(ceres::Problem* problem) {
     problem->AddResidualBlock(cost, loss, a.t.data(), a.q.data(), b.t.data(), b.q.data());
   }
   for (const auto& o : wall_observations_) {
+    if (!scope.freeKeyframe(o.keyframe)) continue;
     auto& kf = keyframes_.at(o.keyframe);
     auto* cost = new ceres::AutoDiffCostFunction<WallObservationFactor, 4, 3, 4, 2>(
         new WallObservationFactor(o.n_base, o.d_base, config_.wall_sigma_normal,
                                   config_.wall_sigma_d));
     problem->AddResidualBlock(cost, new ceres::HuberLoss(config_.wall_huber), kf.t.data(),
-                              kf.q.data(), walls_.at(o.wall).data());
+                              kf.q.data(), useWall(problem, scope, o.wall));
   }
 }
 
-void FactorGraph::addRoomFactors(ceres::Problem* problem) {
+void FactorGraph::addRoomFactors(ceres::Problem* problem, const Scope& scope) {
+  const auto touchesFree = [&](const Room& room) {
+    for (const auto& [a, b] : room.wall_pairs) {
+      if (scope.freeWall(a) || scope.freeWall(b)) return true;
+    }
+    return scope.all();
+  };
   for (auto& [id, room] : rooms_) {
+    if (!touchesFree(room)) continue;  // all its walls held: the room stays where it is
     for (const auto& [a, b] : room.wall_pairs) {
       if (a == b) continue;  // both sides merged into one wall: no constraint left
       auto* cost = new ceres::AutoDiffCostFunction<RoomPairFactor, 1, 2, 2, 2>(
           new RoomPairFactor(config_.room_sigma));
-      problem->AddResidualBlock(cost, nullptr, room.center.data(), walls_.at(a).data(),
-                                walls_.at(b).data());
+      problem->AddResidualBlock(cost, nullptr, room.center.data(), useWall(problem, scope, a),
+                                useWall(problem, scope, b));
     }
     if (room.corridor_anchor && !room.wall_pairs.empty()) {
       auto* cost = new ceres::AutoDiffCostFunction<CorridorAnchorFactor, 1, 2, 2>(
           new CorridorAnchorFactor(*room.corridor_anchor, config_.corridor_anchor_sigma));
       problem->AddResidualBlock(cost, nullptr, room.center.data(),
-                                walls_.at(room.wall_pairs.front().first).data());
+                                useWall(problem, scope, room.wall_pairs.front().first));
     }
     if (room.wall_pairs.empty()) problem->AddParameterBlock(room.center.data(), 2);
   }
   for (const auto& [a, b] : wall_to_wall_) {
-    if (a == b) continue;
+    if (a == b || (!scope.freeWall(a) && !scope.freeWall(b))) continue;
     auto* cost = new ceres::AutoDiffCostFunction<WallToWallFactor, 2, 2, 2>(
         new WallToWallFactor(config_.wall_merge_sigma_theta, config_.wall_merge_sigma_d));
-    problem->AddResidualBlock(cost, nullptr, walls_.at(a).data(), walls_.at(b).data());
+    problem->AddResidualBlock(cost, nullptr, useWall(problem, scope, a),
+                              useWall(problem, scope, b));
   }
 }
 
-OptimizationReport FactorGraph::optimize() {
+OptimizationReport FactorGraph::optimize(size_t window_keyframes) {
   OptimizationReport report;
   Stopwatch watch;
+  const Scope scope = windowScope(window_keyframes);
+  report.window = !scope.all();
   ceres::Problem::Options problem_options;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
   ceres::EigenQuaternionManifold quaternion_manifold;
-  addKeyframeBlocks(&problem, &quaternion_manifold);
-  addPoseAndWallFactors(&problem);
-  addRoomFactors(&problem);
+  addKeyframeBlocks(&problem, &quaternion_manifold, scope);
+  addPoseAndWallFactors(&problem, &quaternion_manifold, scope);
+  addRoomFactors(&problem, scope);
   report.residual_blocks = static_cast<size_t>(problem.NumResidualBlocks());
   if (report.residual_blocks == 0) {
     report.usable = true;
