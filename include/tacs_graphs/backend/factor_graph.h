@@ -47,11 +47,12 @@ struct BackendConfig {
   int num_threads = 1;               // Ceres threads (the other core runs the front end)
   int optimize_every_keyframes = 1;  // optimise after this many new keyframes (and on each loop)
   // Window solves: between full solves, only the newest window_keyframes keyframes and the walls
-  // no older keyframe has seen move; the rest is held (0: every optimisation is a full solve).
+  // no older keyframe has seen move; the rest is held (0: every optimisation is a full solve;
+  // results/backend_window.md: the same ATE, rooms and loops as full solves on every world).
   // A full solve follows each loop closure, the end of a run, and every time the keyframes added
   // since the last one reach full_solve_fraction of the graph, so the cost per keyframe stays
   // bounded as the graph grows.
-  int window_keyframes = 0;
+  int window_keyframes = 30;
   double full_solve_fraction = 0.1;
   // Roll and pitch of the first keyframe, which anchors the map: 0 holds them as measured; > 0
   // lets the vertical walls level the map within this prior [rad].
