@@ -51,22 +51,6 @@ bool readMatrix4(const std::string& path, Pose3* pose) {
   return true;
 }
 
-// Runs `align` reps times (after one warm-up run) and returns the mean time and last result.
-Row measure(const std::string& method, int reps, const std::function<Pose3()>& align) {
-  Row row;
-  row.method = method;
-  row.result = align();
-  row.min_ms = 1e300;
-  for (int i = 0; i < reps; ++i) {
-    tacs::Stopwatch watch;
-    row.result = align();
-    const double ms = watch.elapsedMs();
-    row.mean_ms += ms / reps;
-    row.min_ms = std::min(row.min_ms, ms);
-  }
-  return row;
-}
-
 // Runs the methods round-robin, reps rounds (after one warm-up round), so a load spike on the
 // shared cores hits all of them alike; min and mean per method.
 std::vector<Row> measureInterleaved(
@@ -87,6 +71,11 @@ std::vector<Row> measureInterleaved(
     }
   }
   return rows;
+}
+
+// One method alone: reps runs after a warm-up run.
+Row measure(const std::string& method, int reps, const std::function<Pose3()>& align) {
+  return measureInterleaved({{method, align}}, reps).front();
 }
 
 void printRows(const std::vector<Row>& rows, const Pose3& truth) {

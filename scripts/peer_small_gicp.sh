@@ -5,14 +5,15 @@
 #
 #   bash scripts/peer_small_gicp.sh SMALL_GICP_SRC [REPS]
 #
-# SMALL_GICP_SRC: a clone of github.com/koide3/small_gicp. Needs a built workspace. The workspace
-# keeps the include path until it is configured again with -DTACS_SMALL_GICP_INCLUDE_DIR=.
+# SMALL_GICP_SRC: a clone of github.com/koide3/small_gicp. Needs a built workspace; the include
+# path is taken out of it again on exit, so a later build does not depend on the checkout.
 set -euo pipefail
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)"
 source "$REPO/scripts/env.sh"
 tacs_source_ws
 SG="$(cd "${1:?SMALL_GICP_SRC}" && pwd -P)"
 REPS="${2:-30}"
+trap 'cmake "$TACS_WS/build" -DTACS_SMALL_GICP_INCLUDE_DIR= >/dev/null' EXIT
 cmake "$TACS_WS/build" -DTACS_SMALL_GICP_INCLUDE_DIR="$SG/include" >/dev/null
 make -C "$TACS_WS/build" -j"$(nproc)" bench_gicp >/dev/null
 report="$("$(tacs_bin bench_gicp)" --reps "$REPS")"

@@ -154,7 +154,6 @@ class FactorGraph {
     bool whole = true;
     uint32_t first_free_keyframe = 0;
     std::set<uint32_t> held_walls;
-    bool all() const { return whole; }
     bool freeKeyframe(uint32_t id) const { return whole || id >= first_free_keyframe; }
     bool freeWall(uint32_t id) const { return whole || held_walls.count(id) == 0; }
   };

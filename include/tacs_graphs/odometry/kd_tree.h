@@ -23,8 +23,10 @@ class KdTree3 {
   size_t size() const { return ids_.size(); }
 
   /// Index of the nearest point with squared distance below `bound_sq` (strictly), or -1; its
-  /// squared distance in *dist_sq (`bound_sq` when none).
-  int64_t nearest(const Eigen::Vector3f& query, float bound_sq, float* dist_sq) const;
+  /// squared distance in *dist_sq (`bound_sq` when none). A hint (original index of a likely
+  /// answer, e.g. the last iteration's) tightens the bound from the start.
+  int64_t nearest(const Eigen::Vector3f& query, float bound_sq, float* dist_sq,
+                  int64_t hint = -1) const;
 
   /// Up to k nearest points, closest first (a point tied with the k-th is left out); returns
   /// how many were found.
@@ -46,8 +48,10 @@ class KdTree3 {
   };
   static constexpr uint32_t kLeaf = 3;
 
+  /// Node over points[order[begin..end)], whose box is [lo, hi].
   uint32_t build(std::vector<uint32_t>& order, uint32_t begin, uint32_t end,
-                 const std::vector<Eigen::Vector3d>& points);
+                 const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3f& lo,
+                 const Eigen::Vector3f& hi);
   /// `offset`: per axis, the query's gap to the current cell (0 inside); `cell_sq` their sum of
   /// squares, a lower bound on the distance to any point of the cell.
   template <class Result>

@@ -70,7 +70,7 @@ OptimizationReport Backend::run(size_t window_keyframes) {
   total_optimization_ms_ += report.time_ms;
   ++optimizations_;
   keyframes_since_optimization_ = 0;
-  keyframes_since_full_solve_ = report.window ? keyframes_since_full_solve_ : 0;
+  if (!report.window) keyframes_since_full_solve_ = 0;
   loop_pending_ = false;
   // Landmarks follow the optimised planes; then walls that now coincide are folded.
   for (const auto& [id, lm] : wall_map_.landmarks()) {

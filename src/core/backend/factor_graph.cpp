@@ -203,7 +203,7 @@ void FactorGraph::addRoomFactors(ceres::Problem* problem, const Scope& scope) {
     for (const auto& [a, b] : room.wall_pairs) {
       if (scope.freeWall(a) || scope.freeWall(b)) return true;
     }
-    return scope.all();
+    return scope.whole;
   };
   for (auto& [id, room] : rooms_) {
     if (!touchesFree(room)) continue;  // all its walls held: the room stays where it is
@@ -235,7 +235,7 @@ OptimizationReport FactorGraph::optimize(size_t window_keyframes) {
   OptimizationReport report;
   Stopwatch watch;
   const Scope scope = windowScope(window_keyframes);
-  report.window = !scope.all();
+  report.window = !scope.whole;
   ceres::Problem::Options problem_options;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);

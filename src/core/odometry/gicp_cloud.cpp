@@ -91,22 +91,11 @@ GicpCloud::ConstPtr GicpCloud::fromParts(std::vector<Eigen::Vector3d> points,
 int64_t GicpCloud::nearest(const Eigen::Vector3d& query, double max_dist_sq, double* dist_sq,
                            int64_t hint) const {
   if (points_.empty()) return -1;
-  const Eigen::Vector3f q = query.cast<float>();
-  float bound = static_cast<float>(max_dist_sq);
-  int64_t best = -1;
-  if (hint >= 0 && static_cast<size_t>(hint) < points_.size()) {
-    // Strictly closer points only are taken after this, so the bound must be the hint's own
-    // distance in the tree's float arithmetic.
-    const Eigen::Vector3f h = index_->tree.point(static_cast<uint32_t>(hint));
-    const float dx = h.x() - q.x(), dy = h.y() - q.y(), dz = h.z() - q.z();
-    const float hint_sq = dx * dx + dy * dy + dz * dz;
-    if (hint_sq < bound) bound = hint_sq, best = hint;
-  }
-  float found_sq = bound;
-  const int64_t found = index_->tree.nearest(q, bound, &found_sq);
-  if (found >= 0) best = found;
+  float found_sq = 0.0f;
+  const int64_t found =
+      index_->tree.nearest(query.cast<float>(), static_cast<float>(max_dist_sq), &found_sq, hint);
   if (dist_sq) *dist_sq = found_sq;
-  return best;
+  return found;
 }
 
 void GicpCloud::knn(const Eigen::Vector3d& query, int k, std::vector<uint32_t>* indices,

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <limits>
 #include <numeric>
+#include <tuple>
+#include <utility>
 
 namespace tacs {
 
@@ -41,33 +43,51 @@ struct KnnResult {
 
 }  // namespace
 
+namespace {
+
+// The bounding box of points[order[begin..end)].
+std::pair<Eigen::Vector3f, Eigen::Vector3f> boundsOf(const std::vector<uint32_t>& order,
+                                                     uint32_t begin, uint32_t end,
+                                                     const std::vector<Eigen::Vector3f>& points) {
+  Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::max());
+  Eigen::Vector3f hi = -lo;
+  for (uint32_t i = begin; i < end; ++i) {
+    lo = lo.cwiseMin(points[order[i]]);
+    hi = hi.cwiseMax(points[order[i]]);
+  }
+  return {lo, hi};
+}
+
+}  // namespace
+
 KdTree3::KdTree3(const std::vector<Eigen::Vector3d>& points) {
   const uint32_t n = static_cast<uint32_t>(points.size());
+  std::vector<Eigen::Vector3f> floats(n);
+  for (uint32_t i = 0; i < n; ++i) floats[i] = points[i].cast<float>();
   std::vector<uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
   nodes_.reserve(2 * (n / kLeafSize + 1));
-  lo_.setConstant(std::numeric_limits<float>::max());
-  hi_ = -lo_;
-  for (const Eigen::Vector3d& p : points) {
-    lo_ = lo_.cwiseMin(p.cast<float>());
-    hi_ = hi_.cwiseMax(p.cast<float>());
-  }
-  if (n > 0) build(order, 0, n, points);
+  std::tie(lo_, hi_) = boundsOf(order, 0, n, floats);
+  if (n > 0) build(order, 0, n, floats, lo_, hi_);
   xyz_.resize(3 * static_cast<size_t>(n));
   where_.resize(n);
   for (uint32_t pos = 0; pos < n; ++pos) {
-    const Eigen::Vector3f p = points[order[pos]].cast<float>();
-    std::copy(p.data(), p.data() + 3, &xyz_[3 * static_cast<size_t>(pos)]);
+    std::copy(floats[order[pos]].data(), floats[order[pos]].data() + 3,
+              &xyz_[3 * static_cast<size_t>(pos)]);
     where_[order[pos]] = pos;
   }
   ids_ = std::move(order);
 }
 
 uint32_t KdTree3::build(std::vector<uint32_t>& order, uint32_t begin, uint32_t end,
-                        const std::vector<Eigen::Vector3d>& points) {
+                        const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3f& lo,
+                        const Eigen::Vector3f& hi) {
   const uint32_t index = static_cast<uint32_t>(nodes_.size());
   nodes_.emplace_back();
-  if (end - begin <= static_cast<uint32_t>(kLeafSize)) {
+  int axis = 0;
+  (hi - lo).maxCoeff(&axis);
+  // A leaf when small, or when all points coincide, whatever its size.
+  if (end - begin <= static_cast<uint32_t>(kLeafSize) || !(hi[axis] > lo[axis])) {
     nodes_[index].axis = kLeaf;
     nodes_[index].a = begin;
     nodes_[index].b = end;
@@ -76,22 +96,7 @@ uint32_t KdTree3::build(std::vector<uint32_t>& order, uint32_t begin, uint32_t e
   // Split the widest axis at the middle of the points' extent (not at their median): cells stay
   // compact where the cloud is dense and large where it is sparse, which prunes a search better
   // on LiDAR clouds than a balanced tree of long thin cells.
-  Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::max());
-  Eigen::Vector3f hi = -lo;
-  for (uint32_t i = begin; i < end; ++i) {
-    const Eigen::Vector3f p = points[order[i]].cast<float>();
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  int axis = 0;
-  (hi - lo).maxCoeff(&axis);
-  if (!(hi[axis] > lo[axis])) {  // all points coincide: one leaf, whatever its size
-    nodes_[index].axis = kLeaf;
-    nodes_[index].a = begin;
-    nodes_[index].b = end;
-    return index;
-  }
-  auto coordinate = [&](uint32_t i) { return static_cast<float>(points[i][axis]); };
+  auto coordinate = [&](uint32_t i) { return points[i][axis]; };
   const float cut = 0.5f * (lo[axis] + hi[axis]);
   uint32_t mid =
       static_cast<uint32_t>(std::partition(order.begin() + begin, order.begin() + end,
@@ -102,17 +107,15 @@ uint32_t KdTree3::build(std::vector<uint32_t>& order, uint32_t begin, uint32_t e
     std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
                      [&](uint32_t i, uint32_t j) { return coordinate(i) < coordinate(j); });
   }
-  // The children's extents on the split axis: a far child whose points start well beyond the
-  // cut is pruned sooner.
-  float left_max = -std::numeric_limits<float>::max();
-  float right_min = std::numeric_limits<float>::max();
-  for (uint32_t i = begin; i < mid; ++i) left_max = std::max(left_max, coordinate(order[i]));
-  for (uint32_t i = mid; i < end; ++i) right_min = std::min(right_min, coordinate(order[i]));
-  const uint32_t left = build(order, begin, mid, points);
-  const uint32_t right = build(order, mid, end, points);
+  // The children's boxes; their extents on the split axis go into the node: a far child whose
+  // points start well beyond the cut is pruned sooner.
+  const auto [left_lo, left_hi] = boundsOf(order, begin, mid, points);
+  const auto [right_lo, right_hi] = boundsOf(order, mid, end, points);
+  const uint32_t left = build(order, begin, mid, points, left_lo, left_hi);
+  const uint32_t right = build(order, mid, end, points, right_lo, right_hi);
   Node& node = nodes_[index];  // after the recursion: nodes_ may have grown
-  node.left_max = left_max;
-  node.right_min = right_min;
+  node.left_max = left_hi[axis];
+  node.right_min = right_lo[axis];
   node.axis = static_cast<uint32_t>(axis);
   node.a = left;
   node.b = right;
@@ -149,8 +152,14 @@ void KdTree3::search(uint32_t index, const float* q, float* offset, float cell_s
   }
 }
 
-int64_t KdTree3::nearest(const Eigen::Vector3f& query, float bound_sq, float* dist_sq) const {
+int64_t KdTree3::nearest(const Eigen::Vector3f& query, float bound_sq, float* dist_sq,
+                         int64_t hint) const {
   NearestResult result{bound_sq};
+  if (hint >= 0 && static_cast<size_t>(hint) < where_.size()) {
+    // Only strictly closer points replace it: the bound is the hint's own float distance.
+    result.offer(squaredDistance(query.data(), &xyz_[3 * static_cast<size_t>(where_[hint])]),
+                 static_cast<uint32_t>(hint));
+  }
   float offset[3];
   const float cell_sq = rootGap(query, offset);
   if (!nodes_.empty() && cell_sq < result.bound()) search(0, query.data(), offset, cell_sq, result);
