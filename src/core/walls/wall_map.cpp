@@ -19,10 +19,11 @@ void WallAssociationConfig::validate() const {
 
 namespace {
 
-// A cabinet, partition or machine stands at most this far in front of the wall behind it (m),
-// and a face seen reaching this much higher than another is another surface (m): the bounds of
+// A cabinet, partition, pallet rack or machine stands at most this far in front of the wall
+// behind it (m; the machine by the real hall's east opening stands 0.9-1.2 m before the wall), and
+// a face seen reaching this much higher than another is another surface (m): the bounds of
 // isSeenOver() and standsBeforeATallerWall().
-constexpr double kMaxSlab = 1.0;
+constexpr double kMaxSlab = 1.25;
 constexpr double kTopMargin = 0.5;
 
 double midHeight(const WallLandmark& w) { return 0.5 * (w.z_min + w.z_max); }
