@@ -7,6 +7,7 @@
 
 #include "common/box_room.h"
 #include "common/real_data.h"
+#include "tacs_graphs/odometry/deskew.h"
 #include "tacs_graphs/odometry/gicp.h"
 #include "tacs_graphs/odometry/preprocess.h"
 
@@ -169,6 +170,49 @@ TEST(Gicp, RobustKernelIsNotDraggedByStructureOnlyTheSourceHolds) {
   EXPECT_LT(translationError(robust.T_target_source, truth), 0.005);
   EXPECT_LT(rotationErrorDeg(robust.T_target_source, truth), 0.1);
   EXPECT_TRUE(robust.converged);
+}
+
+// A sweep measured while the sensor turns at 90 deg/s and drives at 1.5 m/s (a point measured t s
+// into the sweep, seen from the pose the sensor had then), registered without deskew: rigid, the
+// pose is off by the motion within the sweep; with the point times, the registration finds the
+// sweep's pose and its velocity (GicpResult::sweep_velocity).
+TEST(Gicp, WithPointTimesTheSweepsOwnMotionIsEstimated) {
+  const test::BoxRoom room;
+  const Pose3 T_world_target = poseFromXyzRpy(4.0, 3.0, 0.5, 0.0, 0.0, 0.0);
+  const Pose3 T_world_source = poseFromXyzRpy(4.3, 3.2, 0.5, 0.0, 0.0, 0.2);
+  BodyVelocity velocity;
+  velocity.linear = Eigen::Vector3d(1.5, 0.0, 0.0);
+  velocity.angular = Eigen::Vector3d(0.0, 0.0, 90.0 * M_PI / 180.0);
+  const PointCloud still = test::renderScan(room, T_world_source, 3);
+  PointCloud moving = still;
+  std::vector<float> times(still.size());
+  for (size_t i = 0; i < still.size(); ++i) {
+    // The head turns once in 0.1 s; the point's azimuth gives its time.
+    const auto& p = still.points[i];
+    const double azimuth = std::atan2(p.y, p.x);
+    times[i] =
+        static_cast<float>(0.1 * (azimuth < 0.0 ? azimuth + 2.0 * M_PI : azimuth) / (2.0 * M_PI));
+    moving.points[i].getVector3fMap() =
+        (motionOver(velocity, times[i]).inverse() * p.getVector3fMap().cast<double>())
+            .cast<float>();
+  }
+  std::vector<float> kept_times;
+  const PointCloud source = preprocess(moving, PreprocessConfig(), nullptr, &times, &kept_times);
+  ASSERT_EQ(kept_times.size(), source.size());
+  const Pose3 truth = T_world_target.inverse() * T_world_source;
+  Gicp gicp;
+  gicp.setTarget(preprocessed(test::renderScan(room, T_world_target, 1)));
+  gicp.setSource(source);
+  const GicpResult rigid = gicp.align(Pose3::Identity());
+  gicp.setSourceTimes({kept_times.begin(), kept_times.end()});
+  const GicpResult timed = gicp.align(Pose3::Identity());
+  EXPECT_GT(translationError(rigid.T_target_source, truth), 0.03);
+  EXPECT_LT(translationError(timed.T_target_source, truth), 0.01);
+  EXPECT_LT(rotationErrorDeg(timed.T_target_source, truth), 0.3);  // as a still scan's
+  EXPECT_NEAR(timed.sweep_velocity[0], 1.5, 0.1);
+  EXPECT_NEAR(timed.sweep_velocity[5] * 180.0 / M_PI, 90.0, 3.0);
+  EXPECT_LT(timed.sweep_velocity.segment<4>(1).norm(), 0.1);
+  EXPECT_TRUE(rigid.sweep_velocity.isZero());
 }
 
 TEST(Gicp, WithoutDataReturnsNotConvergedAndTheGuess) {

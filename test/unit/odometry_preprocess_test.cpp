@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "tacs_graphs/odometry/preprocess.h"
 
@@ -65,6 +66,26 @@ TEST(Preprocess, EmptyAndAllNanInputsGiveEmptyOutput) {
   EXPECT_TRUE(preprocess(nans, PreprocessConfig(), &stats).empty());
   EXPECT_EQ(stats.non_finite, 100u);
   EXPECT_EQ(stats.output, 0u);
+}
+
+// Point times follow the points: dropped with them, averaged per voxel like the coordinates.
+TEST(Preprocess, CarriesThePointTimesThroughCropAndVoxelGrid) {
+  PointCloud in;
+  in.push_back(point(3.01f, 0.01f, 0.01f));
+  in.push_back(point(0.0f, 0.0f, 0.0f));  // "no return": dropped with its time
+  in.push_back(point(3.03f, 0.03f, 0.03f));
+  in.push_back(point(0.01f, 5.01f, 0.01f));
+  const std::vector<float> times = {0.01f, 0.5f, 0.03f, 0.07f};
+  std::vector<float> out_times;
+  const PointCloud out = preprocess(in, PreprocessConfig(), nullptr, &times, &out_times);
+  ASSERT_EQ(out.size(), 2u);
+  ASSERT_EQ(out_times.size(), 2u);
+  EXPECT_NEAR(out_times[0], 0.02f, 1e-6);
+  EXPECT_NEAR(out_times[1], 0.07f, 1e-6);
+  // Times of another length are ignored: no times out.
+  const std::vector<float> short_times = {0.01f};
+  preprocess(in, PreprocessConfig(), nullptr, &short_times, &out_times);
+  EXPECT_TRUE(out_times.empty());
 }
 
 TEST(VoxelDownsample, AveragesPointsOfOneVoxelAndKeepsOthersApart) {

@@ -26,6 +26,11 @@ struct GicpConfig {
   // surface first seen through a doorway) then pairs with a surface near it without pulling the
   // pose. 0: plain least squares.
   double robust_plane_distance_m = 0.0;  // [m]
+  // With source point times (Gicp::setSourceTimes) the sweep's own motion is estimated too, with
+  // a Gaussian prior of these widths on the correction to the velocity the sweep was deskewed
+  // with: it holds the directions the scene leaves unobserved (a corridor's axis).
+  double sweep_velocity_sigma_mps = 0.5;   // [m/s]
+  double sweep_velocity_sigma_dps = 30.0;  // [deg/s]
 
   template <class V>
   void visit(V& v) {
@@ -36,6 +41,8 @@ struct GicpConfig {
     v("rotation_eps_deg", rotation_eps_deg);
     v("num_threads", num_threads);
     v("robust_plane_distance_m", robust_plane_distance_m);
+    v("sweep_velocity_sigma_mps", sweep_velocity_sigma_mps);
+    v("sweep_velocity_sigma_dps", sweep_velocity_sigma_dps);
   }
   void validate() const;
 };
@@ -96,17 +103,28 @@ struct GicpResult {
   /// for a perturbation on the right (source frame), order x y z rx ry rz. Its scale follows
   /// the unit-less plane covariances, so consumers should scale it.
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
+  /// With source point times: the twist (linear m/s, angular rad/s, in the source frame) by which
+  /// the source still moved within its sweep, so a point measured t seconds after the source
+  /// frame's time lies at T_target_source * exp(t * sweep_velocity) * p (a continuous-time
+  /// registration, as in CT-ICP). Zero without times.
+  Eigen::Matrix<double, 6, 1> sweep_velocity = Eigen::Matrix<double, 6, 1>::Zero();
   double time_ms = 0.0;
 };
 
 class Gicp {
  public:
+  using Vector6 = Eigen::Matrix<double, 6, 1>;
+
   explicit Gicp(const GicpConfig& config = GicpConfig());
 
   void setTarget(const PointCloud& cloud);  // builds the KD-tree and covariances once
   void setTarget(GicpCloud::ConstPtr target);
   void setSource(const PointCloud& cloud);
   void setSource(GicpCloud::ConstPtr source);
+  /// Seconds after the source frame's time at which each source point was measured (one per
+  /// source point, after setSource): align() then also estimates the sweep's motion
+  /// (GicpResult::sweep_velocity). Empty, or of another size: the source is one rigid cloud.
+  void setSourceTimes(std::vector<double> offsets_s);
   const GicpCloud::ConstPtr& target() const { return target_; }
   const GicpCloud::ConstPtr& source() const { return source_; }
   const GicpConfig& config() const { return config_; }
@@ -120,15 +138,22 @@ class Gicp {
 
  private:
   struct Linearization;
-  /// `previous`: the last linearisation (or null); its pairs seed the nearest-point searches.
-  Linearization linearize(const Pose3& T, const Linearization* previous) const;
+  /// At pose T and sweep velocity `sweep` (ignored without source times). `previous`: the last
+  /// linearisation (or null); its pairs seed the nearest-point searches.
+  Linearization linearize(const Pose3& T, const Vector6& sweep,
+                          const Linearization* previous) const;
+  /// The source points moved by `sweep` over their times (the points themselves without times).
+  std::vector<Eigen::Vector3d> sweptSource(const Vector6& sweep) const;
   void fillScores(const Linearization& lin, GicpResult* result) const;
+  /// Information of the prior on the sweep velocity (diagonal, linear then angular).
+  Eigen::Matrix<double, 6, 6> sweepPrior() const;
   /// Squared scale of the robust kernel in Mahalanobis units; 0 when it is off.
   double kernelC2() const;
 
   GicpConfig config_;
   GicpCloud::ConstPtr target_;
   GicpCloud::ConstPtr source_;
+  std::vector<double> source_times_;
 };
 
 }  // namespace tacs

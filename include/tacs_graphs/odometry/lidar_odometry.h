@@ -28,6 +28,10 @@ struct OdometryConfig {
   // differs from the guess, followed by a short refinement.
   bool deskew = true;
   bool deskew_refine = true;
+  // With point times, the registration also estimates the sweep's own motion (continuous time,
+  // GicpResult::sweep_velocity) and deskews the scan again with it. Off by default: on the
+  // distorted worlds it helps some and costs others (docs/DESIGN.md, "A scan's way").
+  bool sweep_motion = false;
   double keyframe_distance_m = 0.5;  // [m] new keyframe after this translation from the last one
   double keyframe_angle_deg = 15.0;  // [deg] ... or after this rotation
   int local_map_keyframes = 10;      // keyframes in the sliding-window local map
@@ -81,6 +85,7 @@ struct OdometryConfig {
     v("point_times", point_times);
     v("deskew", deskew);
     v("deskew_refine", deskew_refine);
+    v("sweep_motion", sweep_motion);
     v("keyframe_distance_m", keyframe_distance_m);
     v("keyframe_angle_deg", keyframe_angle_deg);
     v("local_map_keyframes", local_map_keyframes);
@@ -169,12 +174,15 @@ class LidarOdometry {
                         const BodyVelocity& velocity, bool* deskewed) const;
   /// Aligns the scan to the local map from the guess, coarse to fine; falls back to the yaw
   /// hypotheses when the result does not fit or moved the guess beyond the adaptive limits.
+  /// `sweep_times`: the scan's point times when the sweep's motion is estimated, else null.
   GicpResult registerScan(const GicpCloud::ConstPtr& scan, const PointCloud& cloud,
-                          const Pose3& guess, bool reset, OdometryResult* result) const;
+                          const std::vector<float>* sweep_times, const Pose3& guess, bool reset,
+                          OdometryResult* result) const;
   GicpResult align(const GicpCloud::ConstPtr& scan, double gate_m, const Pose3& from,
-                   double robust_m) const;
+                   double robust_m, const std::vector<float>* sweep_times = nullptr) const;
   /// Re-aligns on refine_correspondence_distance_m when it is narrower than the gate.
-  void refineOnNarrowGate(const GicpCloud::ConstPtr& scan, GicpResult* registration) const;
+  void refineOnNarrowGate(const GicpCloud::ConstPtr& scan, const std::vector<float>* sweep_times,
+                          GicpResult* registration) const;
   /// Why the registration is not taken (too few inliers, beyond the adaptive limits), or "".
   std::string rejection(const Pose3& guess, bool reset, const OdometryResult& result) const;
   double fitOf(const GicpCloud::ConstPtr& scan, const Pose3& T) const;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "tacs_graphs/common/types.h"
 
@@ -35,14 +36,19 @@ struct PreprocessStats {
 /// Removes non-finite points and points whose distance to the origin is outside
 /// [min_range_m, max_range_m] (this also drops the exact (0,0,0) "no return" points), then
 /// replaces the points of each voxel by their centroid (intensity averaged). Never throws on bad
-/// data; an all-invalid input gives an empty cloud.
+/// data; an all-invalid input gives an empty cloud. With `times` (one per input point) and
+/// `times_out`, the mean time of each output point's inputs goes to `times_out`.
 PointCloud preprocess(const PointCloud& in, const PreprocessConfig& config,
-                      PreprocessStats* stats = nullptr);
+                      PreprocessStats* stats = nullptr, const std::vector<float>* times = nullptr,
+                      std::vector<float>* times_out = nullptr);
 
 /// Voxel-grid downsampling by hashing integer voxel coordinates (no dense grid, so any extent
 /// works, unlike a fixed-size index grid). Each occupied voxel yields the centroid of its points.
 /// Non-finite points are skipped. Voxels come out in the order of their first point
-/// (deterministic). voxel_size <= 0 copies the finite points.
-PointCloud voxelDownsample(const PointCloud& in, double voxel_size);
+/// (deterministic). voxel_size <= 0 copies the finite points. With `times` (one per input point)
+/// and `times_out`, each output point's mean input time goes to `times_out`.
+PointCloud voxelDownsample(const PointCloud& in, double voxel_size,
+                           const std::vector<float>* times = nullptr,
+                           std::vector<float>* times_out = nullptr);
 
 }  // namespace tacs

@@ -2,11 +2,13 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/timing.h"
+#include "tacs_graphs/odometry/deskew.h"
 #include "tacs_graphs/odometry/parallel.h"
 
 namespace tacs {
@@ -25,6 +27,10 @@ void GicpConfig::validate() const {
   requireConfig(num_threads >= 0, "odometry.gicp.num_threads", "must be >= 0 (0 = OpenMP default)");
   requireConfig(robust_plane_distance_m >= 0.0, "odometry.gicp.robust_plane_distance_m",
                 "must be >= 0 (0 = off)");
+  requireConfig(sweep_velocity_sigma_mps > 0.0, "odometry.gicp.sweep_velocity_sigma_mps",
+                "must be > 0");
+  requireConfig(sweep_velocity_sigma_dps > 0.0, "odometry.gicp.sweep_velocity_sigma_dps",
+                "must be > 0");
 }
 
 namespace {
@@ -62,6 +68,12 @@ double robustWeight(double e, double c2) {
 struct Gicp::Linearization {
   Matrix6d H = Matrix6d::Zero();
   Vector6d g = Vector6d::Zero();
+  // With source times, the blocks of the sweep velocity: a point measured t s into the sweep
+  // has the Jacobian t * J, so its blocks are t * J^T M J (pose x sweep), t^2 * J^T M J and
+  // t * J^T M r.
+  Matrix6d H_pose_sweep = Matrix6d::Zero();
+  Matrix6d H_sweep = Matrix6d::Zero();
+  Vector6d g_sweep = Vector6d::Zero();
   double cost = 0.0;     // sum of squared Mahalanobis distances
   double sq_dist = 0.0;  // sum of squared Euclidean distances
   size_t inliers = 0;
@@ -70,6 +82,9 @@ struct Gicp::Linearization {
   Linearization& operator+=(const Linearization& o) {
     H += o.H;
     g += o.g;
+    H_pose_sweep += o.H_pose_sweep;
+    H_sweep += o.H_sweep;
+    g_sweep += o.g_sweep;
     cost += o.cost;
     sq_dist += o.sq_dist;
     inliers += o.inliers;
@@ -87,9 +102,34 @@ void Gicp::setSource(const PointCloud& cloud) {
   source_ = GicpCloud::build(cloud, config_.k_neighbors, config_.num_threads);
 }
 void Gicp::setSource(GicpCloud::ConstPtr source) { source_ = std::move(source); }
+void Gicp::setSourceTimes(std::vector<double> offsets_s) { source_times_ = std::move(offsets_s); }
 
-Gicp::Linearization Gicp::linearize(const Pose3& T, const Linearization* previous) const {
-  const auto& src = source_->points();
+std::vector<Eigen::Vector3d> Gicp::sweptSource(const Vector6& sweep) const {
+  std::vector<Eigen::Vector3d> out = source_->points();
+  if (source_times_.size() != out.size() || out.empty()) return out;
+  // The motion on a 0.5 ms grid of the times, as deskew() does.
+  constexpr double kStep = 5e-4;
+  const auto [lo, hi] = std::minmax_element(source_times_.begin(), source_times_.end());
+  const size_t cells = static_cast<size_t>(std::ceil((*hi - *lo) / kStep)) + 1;
+  BodyVelocity velocity;
+  velocity.linear = sweep.head<3>();
+  velocity.angular = sweep.tail<3>();
+  std::vector<Pose3> grid(cells);
+  for (size_t c = 0; c < cells; ++c) grid[c] = motionOver(velocity, *lo + c * kStep);
+  for (size_t i = 0; i < out.size(); ++i) {
+    const size_t c =
+        std::min(cells - 1, static_cast<size_t>(std::lround((source_times_[i] - *lo) / kStep)));
+    out[i] = grid[c] * out[i];
+  }
+  return out;
+}
+
+Gicp::Linearization Gicp::linearize(const Pose3& T, const Vector6& sweep,
+                                    const Linearization* previous) const {
+  const bool timed = source_times_.size() == source_->size();
+  const std::vector<Eigen::Vector3d> swept =
+      timed ? sweptSource(sweep) : std::vector<Eigen::Vector3d>();
+  const auto& src = timed ? swept : source_->points();
   const auto& src_cov = source_->covariances();
   const auto& tgt = target_->points();
   const auto& tgt_cov = target_->covariances();
@@ -118,13 +158,30 @@ Gicp::Linearization Gicp::linearize(const Pose3& T, const Linearization* previou
         const double e = r.dot(c.mahalanobis * r);
         const Eigen::Matrix<double, 6, 3> JtM =
             robustWeight(e, kernel_c2) * J.transpose() * c.mahalanobis;
-        acc.H.noalias() += JtM * J;
-        acc.g.noalias() += JtM * r;
+        if (timed) {
+          const Matrix6d JtMJ = JtM * J;
+          const Vector6d JtMr = JtM * r;
+          const double t = source_times_[i];
+          acc.H += JtMJ;
+          acc.g += JtMr;
+          acc.H_pose_sweep += t * JtMJ;
+          acc.H_sweep += (t * t) * JtMJ;
+          acc.g_sweep += t * JtMr;
+        } else {
+          acc.H.noalias() += JtM * J;
+          acc.g.noalias() += JtM * r;
+        }
         acc.cost += robustCost(e, kernel_c2);
         acc.sq_dist += dist_sq;
         ++acc.inliers;
       });
   lin.pairs = std::move(pairs);
+  if (timed) {  // the prior on the sweep velocity (GicpConfig::sweep_velocity_sigma_*)
+    const Matrix6d prior = sweepPrior();
+    lin.H_sweep += prior;
+    lin.g_sweep += prior * sweep;
+    lin.cost += sweep.dot(prior * sweep);
+  }
   return lin;
 }
 
@@ -146,7 +203,7 @@ GicpResult Gicp::evaluate(const Pose3& T_target_source) const {
   GicpResult result;
   result.T_target_source = T_target_source;
   if (target_ && source_ && !target_->empty() && !source_->empty()) {
-    fillScores(linearize(T_target_source, nullptr), &result);
+    fillScores(linearize(T_target_source, Vector6d::Zero(), nullptr), &result);
   }
   result.time_ms = watch.elapsedMs();
   return result;
@@ -160,25 +217,42 @@ GicpResult Gicp::align(const Pose3& initial_guess) const {
     result.time_ms = watch.elapsedMs();
     return result;
   }
-  const auto& src = source_->points();
+  const bool timed = source_times_.size() == source_->size();
   const auto& tgt = target_->points();
   const double rot_eps = config_.rotation_eps_deg * M_PI / 180.0;
   const double kernel_c2 = kernelC2();
+  const Matrix6d prior = sweepPrior();
 
   Pose3 T = initial_guess;
-  Linearization lin = linearize(T, nullptr);
+  Vector6d sweep = Vector6d::Zero();
+  Linearization lin = linearize(T, sweep, nullptr);
   double lambda = -1.0;
   for (int iter = 0; iter < config_.max_iterations && lin.inliers >= 6; ++iter) {
     result.iterations = iter + 1;
     // Levenberg-Marquardt: damp until the cost (same pairs) decreases.
     if (lambda < 0.0) lambda = 1e-9 * lin.H.diagonal().maxCoeff();
     bool accepted = false;
-    Vector6d delta = Vector6d::Zero();
+    Vector6d delta = Vector6d::Zero(), delta_sweep = Vector6d::Zero();
     for (int attempt = 0; attempt < 10 && !accepted; ++attempt) {
-      delta = (lin.H + lambda * Matrix6d::Identity()).ldlt().solve(-lin.g);
+      if (timed) {  // pose and sweep velocity together (12 unknowns)
+        Eigen::Matrix<double, 12, 12> H;
+        H << lin.H, lin.H_pose_sweep, lin.H_pose_sweep.transpose(), lin.H_sweep;
+        H.diagonal().array() += lambda;
+        Eigen::Matrix<double, 12, 1> g;
+        g << lin.g, lin.g_sweep;
+        const Eigen::Matrix<double, 12, 1> step = H.ldlt().solve(-g);
+        delta = step.head<6>();
+        delta_sweep = step.tail<6>();
+      } else {
+        delta = (lin.H + lambda * Matrix6d::Identity()).ldlt().solve(-lin.g);
+      }
       const Pose3 candidate = retract(T, delta);
+      const Vector6d candidate_sweep = sweep + delta_sweep;
+      const std::vector<Eigen::Vector3d> swept =
+          timed ? sweptSource(candidate_sweep) : std::vector<Eigen::Vector3d>();
+      const auto& src = timed ? swept : source_->points();
       // Serial: one 3x3 product per pair is cheaper than waking a second thread.
-      double trial_cost = 0.0;
+      double trial_cost = timed ? candidate_sweep.dot(prior * candidate_sweep) : 0.0;
       for (size_t i = 0; i < src.size(); ++i) {
         const Correspondence& c = lin.pairs[i];
         if (c.target < 0) continue;
@@ -187,6 +261,7 @@ GicpResult Gicp::align(const Pose3& initial_guess) const {
       }
       if (trial_cost <= lin.cost) {
         T = candidate;
+        sweep = candidate_sweep;
         accepted = true;
         lambda *= 0.1;
       } else {
@@ -197,16 +272,31 @@ GicpResult Gicp::align(const Pose3& initial_guess) const {
       result.converged = true;
       break;
     }
-    lin = linearize(T, &lin);
-    if (delta.head<3>().norm() < config_.translation_eps_m && delta.tail<3>().norm() < rot_eps) {
+    lin = linearize(T, sweep, &lin);
+    // The sweep's change is judged by what it moves the sweep's last point (0.1 s of a 10 Hz
+    // LiDAR) against the same thresholds.
+    if (delta.head<3>().norm() < config_.translation_eps_m && delta.tail<3>().norm() < rot_eps &&
+        0.1 * delta_sweep.head<3>().norm() < config_.translation_eps_m &&
+        0.1 * delta_sweep.tail<3>().norm() < rot_eps) {
       result.converged = true;
       break;
     }
   }
   result.T_target_source = T;
+  result.sweep_velocity = sweep;
   fillScores(lin, &result);
   result.time_ms = watch.elapsedMs();
   return result;
+}
+
+Matrix6d Gicp::sweepPrior() const {
+  // In the cost's units (squared Mahalanobis distances): a correction of one sigma costs 1.
+  const double sigma_rad = config_.sweep_velocity_sigma_dps * M_PI / 180.0;
+  Vector6d inv_var;
+  const double sigma_m = config_.sweep_velocity_sigma_mps;
+  inv_var << Eigen::Vector3d::Constant(1.0 / (sigma_m * sigma_m)),
+      Eigen::Vector3d::Constant(1.0 / (sigma_rad * sigma_rad));
+  return inv_var.asDiagonal();
 }
 
 }  // namespace tacs

@@ -122,13 +122,14 @@ PointCloud LidarOdometry::compensate(const PointCloud& scan, const std::vector<f
 }
 
 GicpResult LidarOdometry::align(const GicpCloud::ConstPtr& scan, double gate_m, const Pose3& from,
-                                double robust_m) const {
+                                double robust_m, const std::vector<float>* sweep_times) const {
   GicpConfig gated = config_.gicp;
   gated.max_correspondence_distance_m = gate_m;
   gated.robust_plane_distance_m = robust_m;
   Gicp gicp(gated);
   gicp.setTarget(local_map_);
   gicp.setSource(scan);
+  if (sweep_times) gicp.setSourceTimes({sweep_times->begin(), sweep_times->end()});
   return gicp.align(from);
 }
 
@@ -201,8 +202,8 @@ GicpResult LidarOdometry::recoverFromHypotheses(const PointCloud& cloud,
 }
 
 GicpResult LidarOdometry::registerScan(const GicpCloud::ConstPtr& scan, const PointCloud& cloud,
-                                       const Pose3& guess, bool reset,
-                                       OdometryResult* result) const {
+                                       const std::vector<float>* sweep_times, const Pose3& guess,
+                                       bool reset, OdometryResult* result) const {
   const double gate_m = config_.gicp.max_correspondence_distance_m;
   const double robust_m = config_.gicp.robust_plane_distance_m;
   Pose3 start = guess;
@@ -211,7 +212,7 @@ GicpResult LidarOdometry::registerScan(const GicpCloud::ConstPtr& scan, const Po
         align(scan, std::max(config_.recovery_correspondence_distance_m, gate_m), guess, robust_m)
             .T_target_source;
   }
-  GicpResult reg = align(scan, gate_m, start, robust_m);
+  GicpResult reg = align(scan, gate_m, start, robust_m, sweep_times);
   result->fit = fitOf(scan, reg.T_target_source);
   // A rectangular room has false minima a quarter turn away that still fit half the scan: the
   // fit is judged against the recent scans' too, not only against the absolute floor.
@@ -266,14 +267,16 @@ void LidarOdometry::startOn(double stamp, const PointCloud::Ptr& cloud,
 }
 
 void LidarOdometry::refineOnNarrowGate(const GicpCloud::ConstPtr& scan_gicp,
+                                       const std::vector<float>* sweep_times,
                                        GicpResult* registration) const {
   const double refine_m = config_.refine_correspondence_distance_m;
   if (refine_m <= 0.0 || refine_m >= config_.gicp.max_correspondence_distance_m) return;
   // The inlier test stays on the wide gate's pairs: the narrow gate leaves out far points by
   // design.
-  registration->T_target_source = align(scan_gicp, refine_m, registration->T_target_source,
-                                        config_.refine_robust_plane_distance_m)
-                                      .T_target_source;
+  const GicpResult refined = align(scan_gicp, refine_m, registration->T_target_source,
+                                   config_.refine_robust_plane_distance_m, sweep_times);
+  registration->T_target_source = refined.T_target_source;
+  registration->sweep_velocity = refined.sweep_velocity;
 }
 
 std::string LidarOdometry::rejection(const Pose3& guess, bool reset,
@@ -317,8 +320,13 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
   BodyVelocity velocity;
   if (!reset) velocity = velocity_;
   PointCloud compensated = compensate(scan, point_offsets_s, velocity, &result.deskewed);
+  // The preprocessed points' times, when the registration estimates the sweep's motion.
+  const bool timed = result.deskewed && config_.sweep_motion;
+  std::vector<float> times;
   PointCloud::Ptr cloud(
-      new PointCloud(preprocess(compensated, config_.preprocess, &result.preprocess)));
+      new PointCloud(preprocess(compensated, config_.preprocess, &result.preprocess,
+                                timed ? point_offsets_s : nullptr, &times)));
+  const std::vector<float>* sweep_times = timed ? &times : nullptr;
   const PreprocessStats& s = result.preprocess;
   if (cloud->size() < static_cast<size_t>(config_.min_scan_points)) {
     const std::string counts = std::to_string(s.input) + " points in, " +
@@ -337,17 +345,26 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
     return finish("");
   }
 
-  result.registration = registerScan(scan_gicp, *cloud, guess, reset, &result);
+  result.registration = registerScan(scan_gicp, *cloud, sweep_times, guess, reset, &result);
   if (result.deskewed && config_.deskew_refine) {
-    // Deskewed once more with the motion the registration found, so the refinement below sees
-    // the scan as the registered motion would have measured it.
+    // Deskewed once more with the motion the registration found (the sweep's own, or the step
+    // since the last scan), so the refinement below sees the scan as that motion measured it.
     const double dt = stamp - last_stamp_;
     const Pose3 step = last_pose_.inverse() * result.registration.T_target_source;
-    compensated = compensate(scan, point_offsets_s, velocityOf(step, dt), &result.deskewed);
-    cloud.reset(new PointCloud(preprocess(compensated, config_.preprocess, &result.preprocess)));
+    const Eigen::Matrix<double, 6, 1>& extra = result.registration.sweep_velocity;
+    BodyVelocity sweep_velocity = velocityOf(step, dt);
+    if (timed && !result.recovered) {
+      sweep_velocity = velocity;
+      sweep_velocity.linear += extra.head<3>();
+      sweep_velocity.angular += extra.tail<3>();
+    }
+    result.registration.sweep_velocity.setZero();  // taken into the cloud
+    compensated = compensate(scan, point_offsets_s, sweep_velocity, &result.deskewed);
+    cloud.reset(new PointCloud(preprocess(compensated, config_.preprocess, &result.preprocess,
+                                          sweep_times ? point_offsets_s : nullptr, &times)));
     scan_gicp = GicpCloud::build(*cloud, config_.gicp.k_neighbors, config_.gicp.num_threads);
   }
-  refineOnNarrowGate(scan_gicp, &result.registration);
+  refineOnNarrowGate(scan_gicp, sweep_times, &result.registration);
   const std::string rejected = rejection(guess, reset, result);
   if (!rejected.empty()) return finish(rejected);
   const GicpResult& reg = result.registration;

@@ -39,21 +39,24 @@ class VoxelTable {
     cells_.reserve(expected);
   }
 
-  void add(const std::array<int64_t, 3>& key, const pcl::PointXYZI& p) {
+  void add(const std::array<int64_t, 3>& key, const pcl::PointXYZI& p, float time) {
     size_t h = hash(key) & mask_;
     while (slots_[h] >= 0 && cells_[slots_[h]].key != key) h = (h + 1) & mask_;
     if (slots_[h] < 0) {
       slots_[h] = static_cast<int64_t>(cells_.size());
-      cells_.push_back({key, Eigen::Vector4d::Zero(), 0});
+      cells_.push_back({key, Eigen::Vector4d::Zero(), 0.0, 0});
     }
     Cell& c = cells_[slots_[h]];
     c.sum += Eigen::Vector4d(p.x, p.y, p.z, p.intensity);
+    c.time_sum += time;
     ++c.count;
   }
 
-  void appendCentroids(PointCloud* out) const {
+  // The centroids, and the mean point time of each when `times` is given.
+  void appendCentroids(PointCloud* out, std::vector<float>* times) const {
     out->points.reserve(out->points.size() + cells_.size());
     for (const Cell& c : cells_) {
+      if (times) times->push_back(static_cast<float>(c.time_sum / static_cast<double>(c.count)));
       const Eigen::Vector4d mean = c.sum / static_cast<double>(c.count);
       pcl::PointXYZI q;
       q.x = static_cast<float>(mean[0]);
@@ -68,6 +71,7 @@ class VoxelTable {
   struct Cell {
     std::array<int64_t, 3> key;
     Eigen::Vector4d sum;
+    double time_sum;
     int64_t count;
   };
   static size_t hash(const std::array<int64_t, 3>& k) {
@@ -84,25 +88,31 @@ class VoxelTable {
 
 }  // namespace
 
-PointCloud voxelDownsample(const PointCloud& in, double voxel_size) {
+PointCloud voxelDownsample(const PointCloud& in, double voxel_size, const std::vector<float>* times,
+                           std::vector<float>* times_out) {
   PointCloud out;
   out.header = in.header;
+  const bool timed = times && times_out && times->size() == in.points.size();
+  if (times_out) times_out->clear();
   if (voxel_size > 0.0) {
     const double inv = 1.0 / voxel_size;
     VoxelTable table(in.points.size());
-    for (const auto& p : in.points) {
+    for (size_t i = 0; i < in.points.size(); ++i) {
+      const auto& p = in.points[i];
       if (!isFinitePoint(p)) continue;
       const Eigen::Vector3d scaled = Eigen::Vector3d(p.x, p.y, p.z) * inv;
       if (scaled.cwiseAbs().maxCoeff() > 1e18) continue;  // would overflow a 64-bit index
       table.add({static_cast<int64_t>(std::floor(scaled.x())),
                  static_cast<int64_t>(std::floor(scaled.y())),
                  static_cast<int64_t>(std::floor(scaled.z()))},
-                p);
+                p, timed ? (*times)[i] : 0.0f);
     }
-    table.appendCentroids(&out);
+    table.appendCentroids(&out, timed ? times_out : nullptr);
   } else {
-    for (const auto& p : in.points) {
-      if (isFinitePoint(p)) out.points.push_back(p);
+    for (size_t i = 0; i < in.points.size(); ++i) {
+      if (!isFinitePoint(in.points[i])) continue;
+      out.points.push_back(in.points[i]);
+      if (timed) times_out->push_back((*times)[i]);
     }
   }
   out.width = static_cast<uint32_t>(out.points.size());
@@ -111,8 +121,11 @@ PointCloud voxelDownsample(const PointCloud& in, double voxel_size) {
   return out;
 }
 
-PointCloud preprocess(const PointCloud& in, const PreprocessConfig& config,
-                      PreprocessStats* stats) {
+PointCloud preprocess(const PointCloud& in, const PreprocessConfig& config, PreprocessStats* stats,
+                      const std::vector<float>* times, std::vector<float>* times_out) {
+  const bool timed = times && times_out && times->size() == in.points.size();
+  if (times_out) times_out->clear();
+  std::vector<float> kept_times;
   PreprocessStats s;
   s.input = in.points.size();
   PointCloud kept;
@@ -120,7 +133,8 @@ PointCloud preprocess(const PointCloud& in, const PreprocessConfig& config,
   kept.points.reserve(in.points.size());
   const double min_sq = config.min_range_m * config.min_range_m;
   const double max_sq = config.max_range_m * config.max_range_m;
-  for (const auto& p : in.points) {
+  for (size_t i = 0; i < in.points.size(); ++i) {
+    const auto& p = in.points[i];
     if (!isFinitePoint(p)) {
       ++s.non_finite;
       continue;
@@ -132,10 +146,12 @@ PointCloud preprocess(const PointCloud& in, const PreprocessConfig& config,
       continue;
     }
     kept.points.push_back(p);
+    if (timed) kept_times.push_back((*times)[i]);
   }
   kept.width = static_cast<uint32_t>(kept.points.size());
   kept.height = 1;
-  PointCloud out = voxelDownsample(kept, config.voxel_size_m);
+  std::vector<float>* out_times = timed ? times_out : nullptr;
+  PointCloud out = voxelDownsample(kept, config.voxel_size_m, &kept_times, out_times);
   s.voxel_size_m = config.voxel_size_m;
   // Point budget: on surfaces the count falls with the voxel edge squared, so a dense LiDAR's
   // scan is regridded coarser (from the first grid's centroids, which is cheap) until it fits.
@@ -143,7 +159,8 @@ PointCloud preprocess(const PointCloud& in, const PreprocessConfig& config,
   for (int pass = 0; budget > 0 && s.voxel_size_m > 0.0 && out.size() > budget && pass < 4;
        ++pass) {
     s.voxel_size_m *= 1.05 * std::sqrt(static_cast<double>(out.size()) / budget);
-    out = voxelDownsample(out, s.voxel_size_m);
+    const std::vector<float> pass_times = out_times ? *out_times : std::vector<float>();
+    out = voxelDownsample(out, s.voxel_size_m, &pass_times, out_times);
   }
   s.output = out.points.size();
   if (stats) *stats = s;
