@@ -26,6 +26,22 @@ Pose3 motionOver(const BodyVelocity& velocity, double t);
 /// SE(3) logarithm over dt, so that motionOver(velocityOf(step, dt), dt) == step.
 BodyVelocity velocityOf(const Pose3& step, double dt);
 
+/// The motion of `velocity` sampled every 0.5 ms from t_lo to t_hi (seconds from the reference):
+/// the pose of a point's time is looked up, not computed per point (deskew() and the
+/// continuous-time GICP, GicpResult::sweep_velocity).
+class MotionGrid {
+ public:
+  MotionGrid(const BodyVelocity& velocity, double t_lo, double t_hi);
+  size_t size() const { return poses_.size(); }
+  /// The cell nearest to time t (clamped to the grid).
+  size_t cell(double t) const;
+  const Pose3& pose(size_t cell) const { return poses_[cell]; }
+
+ private:
+  double t_lo_ = 0.0;
+  std::vector<Pose3> poses_;
+};
+
 /// Returns `scan` (base frame, point i measured offset_s[i] seconds after the reference stamp)
 /// with each point expressed in the base frame at the reference stamp. offset_s must have one
 /// entry per point; the transforms are evaluated on a 0.5 ms grid of the offsets (under 5 mm at

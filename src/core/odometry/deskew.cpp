@@ -38,22 +38,28 @@ BodyVelocity velocityOf(const Pose3& step, double dt) {
   return v;
 }
 
+MotionGrid::MotionGrid(const BodyVelocity& velocity, double t_lo, double t_hi) : t_lo_(t_lo) {
+  const size_t cells = static_cast<size_t>(std::ceil((t_hi - t_lo) / kGridStepS)) + 1;
+  poses_.resize(cells);
+  for (size_t c = 0; c < cells; ++c) poses_[c] = motionOver(velocity, t_lo + c * kGridStepS);
+}
+
+size_t MotionGrid::cell(double t) const {
+  return std::min(poses_.size() - 1,
+                  static_cast<size_t>(std::max(0L, std::lround((t - t_lo_) / kGridStepS))));
+}
+
 PointCloud deskew(const PointCloud& scan, const std::vector<float>& offset_s,
                   const BodyVelocity& velocity) {
   PointCloud out = scan;
   if (offset_s.size() != scan.size() || scan.empty()) return out;
   const auto [lo, hi] = std::minmax_element(offset_s.begin(), offset_s.end());
-  const double t0 = *lo;
-  const size_t cells = static_cast<size_t>(std::ceil((*hi - t0) / kGridStepS)) + 1;
-  std::vector<Eigen::Affine3f> grid(cells);
-  for (size_t c = 0; c < cells; ++c) {
-    grid[c] = motionOver(velocity, t0 + c * kGridStepS).cast<float>();
-  }
+  const MotionGrid motion(velocity, *lo, *hi);
+  std::vector<Eigen::Affine3f> grid(motion.size());
+  for (size_t c = 0; c < grid.size(); ++c) grid[c] = motion.pose(c).cast<float>();
   for (size_t i = 0; i < out.size(); ++i) {
-    const size_t c =
-        std::min(cells - 1, static_cast<size_t>(std::lround((offset_s[i] - t0) / kGridStepS)));
     auto& p = out.points[i];
-    p.getVector3fMap() = grid[c] * p.getVector3fMap();
+    p.getVector3fMap() = grid[motion.cell(offset_s[i])] * p.getVector3fMap();
   }
   return out;
 }

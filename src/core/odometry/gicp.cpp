@@ -107,20 +107,13 @@ void Gicp::setSourceTimes(std::vector<double> offsets_s) { source_times_ = std::
 std::vector<Eigen::Vector3d> Gicp::sweptSource(const Vector6& sweep) const {
   std::vector<Eigen::Vector3d> out = source_->points();
   if (source_times_.size() != out.size() || out.empty()) return out;
-  // The motion on a 0.5 ms grid of the times, as deskew() does.
-  constexpr double kStep = 5e-4;
   const auto [lo, hi] = std::minmax_element(source_times_.begin(), source_times_.end());
-  const size_t cells = static_cast<size_t>(std::ceil((*hi - *lo) / kStep)) + 1;
   BodyVelocity velocity;
   velocity.linear = sweep.head<3>();
   velocity.angular = sweep.tail<3>();
-  std::vector<Pose3> grid(cells);
-  for (size_t c = 0; c < cells; ++c) grid[c] = motionOver(velocity, *lo + c * kStep);
-  for (size_t i = 0; i < out.size(); ++i) {
-    const size_t c =
-        std::min(cells - 1, static_cast<size_t>(std::lround((source_times_[i] - *lo) / kStep)));
-    out[i] = grid[c] * out[i];
-  }
+  const MotionGrid motion(velocity, *lo, *hi);
+  for (size_t i = 0; i < out.size(); ++i)
+    out[i] = motion.pose(motion.cell(source_times_[i])) * out[i];
   return out;
 }
 
