@@ -32,6 +32,11 @@ struct OdometryConfig {
   // GicpResult::sweep_velocity) and deskews the scan again with it. Off by default: on the
   // distorted worlds it helps some and costs others (docs/DESIGN.md, "A scan's way").
   bool sweep_motion = false;
+  // Register each deskewed scan at its sweep's middle, not at its stamp, and carry the pose back
+  // to the stamp with the step's velocity. An error of the deskew velocity then bends the cloud
+  // about its middle instead of shifting it as a whole: the pose no longer takes up the error,
+  // and the next velocity (a difference of two poses) does not feed it back.
+  bool deskew_to_mid_sweep = true;
   double keyframe_distance_m = 0.5;  // [m] new keyframe after this translation from the last one
   double keyframe_angle_deg = 15.0;  // [deg] ... or after this rotation
   int local_map_keyframes = 10;      // keyframes in the sliding-window local map
@@ -86,6 +91,7 @@ struct OdometryConfig {
     v("deskew", deskew);
     v("deskew_refine", deskew_refine);
     v("sweep_motion", sweep_motion);
+    v("deskew_to_mid_sweep", deskew_to_mid_sweep);
     v("keyframe_distance_m", keyframe_distance_m);
     v("keyframe_angle_deg", keyframe_angle_deg);
     v("local_map_keyframes", local_map_keyframes);
@@ -151,7 +157,7 @@ class LidarOdometry {
 
   const OdometryConfig& config() const { return config_; }
   /// Pose of the last accepted scan.
-  const Pose3& pose() const { return last_pose_; }
+  const Pose3& pose() const { return stamp_pose_; }
   /// The current local map (odom frame), null before the first scan.
   const GicpCloud::ConstPtr& localMap() const { return local_map_; }
   size_t numKeyframes() const { return next_keyframe_id_; }
@@ -195,12 +201,22 @@ class LidarOdometry {
   void addKeyframe(OdometryResult* result, const GicpCloud::ConstPtr& scan_gicp,
                    const PointCloud::Ptr& cloud);
   void rebuildLocalMap();
-  void attachKeyframeCloud(const PointCloud& scan, OdometryResult* result) const;
+  /// The keyframe cloud handed on, from the scan deskewed to its stamp (`other_frame`: the
+  /// registered cloud is not in the stamp's frame, so it cannot be handed on as it is).
+  void attachKeyframeCloud(const PointCloud& scan, bool other_frame, OdometryResult* result) const;
+  /// The middle of the sweep relative to the stamp [s] when the scan is deskewed and
+  /// deskew_to_mid_sweep is on (`shifted`: the point times relative to it), else 0.
+  double sweepReference(const PointCloud& scan, const std::vector<float>* offsets,
+                        std::vector<float>* shifted) const;
 
   OdometryConfig config_;
   bool initialized_ = false;
+  // The last accepted scan: its registered instant and pose (the sweep's middle with
+  // deskew_to_mid_sweep), its stamp and the pose at the stamp.
   double last_stamp_ = 0.0;
   Pose3 last_pose_ = Pose3::Identity();
+  double last_scan_stamp_ = 0.0;
+  Pose3 stamp_pose_ = Pose3::Identity();
   // The twist of the last accepted step (the constant-velocity motion model).
   bool has_velocity_ = false;
   BodyVelocity velocity_;

@@ -78,7 +78,7 @@ void LidarOdometry::addKeyframe(OdometryResult* result, const GicpCloud::ConstPt
                                 const PointCloud::Ptr& cloud) {
   Keyframe kf;
   kf.id = next_keyframe_id_++;
-  kf.T_odom_base = result->T_odom_base;
+  kf.T_odom_base = last_pose_;  // the registered instant: the local map's frame
   kf.cloud = cloud;
   kf.gicp = scan_gicp;
   if (!window_.empty()) {
@@ -297,12 +297,25 @@ std::string LidarOdometry::rejection(const Pose3& guess, bool reset,
   return "";
 }
 
+double LidarOdometry::sweepReference(const PointCloud& scan, const std::vector<float>* offsets,
+                                     std::vector<float>* shifted) const {
+  if (!config_.deskew || !config_.deskew_to_mid_sweep || !offsets ||
+      offsets->size() != scan.size() || scan.empty()) {
+    return 0.0;
+  }
+  const auto [lo, hi] = std::minmax_element(offsets->begin(), offsets->end());
+  const float mid = 0.5f * (*lo + *hi);
+  shifted->resize(offsets->size());
+  for (size_t i = 0; i < offsets->size(); ++i) (*shifted)[i] = (*offsets)[i] - mid;
+  return mid;
+}
+
 OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
                                       const std::vector<float>* point_offsets_s) {
   Stopwatch watch;
   OdometryResult result;
   result.stamp = stamp;
-  result.T_odom_base = last_pose_;
+  result.T_odom_base = stamp_pose_;
   auto finish = [&](const std::string& error) {
     result.ok = error.empty();
     result.error = error;
@@ -310,22 +323,28 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
     return result;
   };
   if (!std::isfinite(stamp)) return finish("non-finite stamp");
-  if (initialized_ && stamp <= last_stamp_) {
-    return finish(format("stamp %.6f is not after the previous scan's %.6f", stamp, last_stamp_));
+  if (initialized_ && stamp <= last_scan_stamp_) {
+    return finish(
+        format("stamp %.6f is not after the previous scan's %.6f", stamp, last_scan_stamp_));
   }
+  // The scan is registered at its sweep's middle (deskew_to_mid_sweep): `t` is that instant and
+  // `offsets` the point times relative to it.
+  std::vector<float> mid_offsets;
+  const double ref_s = sweepReference(scan, point_offsets_s, &mid_offsets);
+  const std::vector<float>* offsets = ref_s != 0.0 ? &mid_offsets : point_offsets_s;
+  const double t = stamp + ref_s;
   bool reset = !initialized_;
-  const Pose3 guess = initialized_ ? predict(stamp, &reset) : Pose3::Identity();
+  const Pose3 guess = initialized_ ? predict(t, &reset) : Pose3::Identity();
   result.motion_prior_reset = reset && initialized_;
   // Deskewed with the guessed motion; without a motion prior the scan stays as measured.
   BodyVelocity velocity;
   if (!reset) velocity = velocity_;
-  PointCloud compensated = compensate(scan, point_offsets_s, velocity, &result.deskewed);
+  PointCloud compensated = compensate(scan, offsets, velocity, &result.deskewed);
   // The preprocessed points' times, when the registration estimates the sweep's motion.
   const bool timed = result.deskewed && config_.sweep_motion;
   std::vector<float> times;
-  PointCloud::Ptr cloud(
-      new PointCloud(preprocess(compensated, config_.preprocess, &result.preprocess,
-                                timed ? point_offsets_s : nullptr, &times)));
+  PointCloud::Ptr cloud(new PointCloud(preprocess(
+      compensated, config_.preprocess, &result.preprocess, timed ? offsets : nullptr, &times)));
   const std::vector<float>* sweep_times = timed ? &times : nullptr;
   const PreprocessStats& s = result.preprocess;
   if (cloud->size() < static_cast<size_t>(config_.min_scan_points)) {
@@ -340,8 +359,10 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
       GicpCloud::build(*cloud, config_.gicp.k_neighbors, config_.gicp.num_threads);
 
   if (!initialized_) {  // the first scan defines the odom frame
-    startOn(stamp, cloud, scan_gicp, &result);
-    attachKeyframeCloud(compensated, &result);
+    startOn(t, cloud, scan_gicp, &result);
+    last_scan_stamp_ = stamp;
+    stamp_pose_ = last_pose_;
+    attachKeyframeCloud(compensated, ref_s != 0.0, &result);
     return finish("");
   }
 
@@ -349,7 +370,7 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
   if (result.deskewed && config_.deskew_refine) {
     // Deskewed once more with the motion the registration found (the sweep's own, or the step
     // since the last scan), so the refinement below sees the scan as that motion measured it.
-    const double dt = stamp - last_stamp_;
+    const double dt = t - last_stamp_;
     const Pose3 step = last_pose_.inverse() * result.registration.T_target_source;
     const Eigen::Matrix<double, 6, 1>& extra = result.registration.sweep_velocity;
     BodyVelocity sweep_velocity = velocityOf(step, dt);
@@ -359,34 +380,39 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
       sweep_velocity.angular += extra.tail<3>();
     }
     result.registration.sweep_velocity.setZero();  // taken into the cloud
-    compensated = compensate(scan, point_offsets_s, sweep_velocity, &result.deskewed);
+    compensated = compensate(scan, offsets, sweep_velocity, &result.deskewed);
     cloud.reset(new PointCloud(preprocess(compensated, config_.preprocess, &result.preprocess,
-                                          sweep_times ? point_offsets_s : nullptr, &times)));
+                                          sweep_times ? offsets : nullptr, &times)));
     scan_gicp = GicpCloud::build(*cloud, config_.gicp.k_neighbors, config_.gicp.num_threads);
   }
   refineOnNarrowGate(scan_gicp, sweep_times, &result.registration);
   const std::string rejected = rejection(guess, reset, result);
   if (!rejected.empty()) return finish(rejected);
   const GicpResult& reg = result.registration;
-  updateMotionModel(stamp, guess, reg.T_target_source, reset);
+  updateMotionModel(t, guess, reg.T_target_source, reset);
   updateRecentFit(result.fit);
-  result.T_odom_base = last_pose_;
+  last_scan_stamp_ = stamp;
+  // Back from the sweep's middle to the stamp with the step's velocity.
+  stamp_pose_ = last_pose_ * motionOver(velocity_, -ref_s);
+  result.T_odom_base = stamp_pose_;
   if (isKeyframe(last_pose_)) {
     addKeyframe(&result, scan_gicp, cloud);
-    attachKeyframeCloud(compensated, &result);
+    if (ref_s != 0.0) compensated = compensate(scan, point_offsets_s, velocity_, &result.deskewed);
+    attachKeyframeCloud(compensated, ref_s != 0.0, &result);
   }
   return finish("");
 }
 
-void LidarOdometry::attachKeyframeCloud(const PointCloud& scan, OdometryResult* result) const {
+void LidarOdometry::attachKeyframeCloud(const PointCloud& scan, bool other_frame,
+                                        OdometryResult* result) const {
   // Traversability needs several points per tri-grid node and walls a dense inlier band: the
-  // keyframe cloud handed on is finer than the odometry's own grid.
-  if (config_.keyframe_cloud_voxel_m <= 0.0 ||
-      config_.keyframe_cloud_voxel_m == config_.preprocess.voxel_size_m) {
-    return;
-  }
+  // keyframe cloud handed on is finer than the odometry's own grid. The registered cloud is
+  // handed on as it is when it has that grid and the stamp's frame.
+  const bool fine_grid = config_.keyframe_cloud_voxel_m > 0.0 &&
+                         config_.keyframe_cloud_voxel_m != config_.preprocess.voxel_size_m;
+  if (!fine_grid && !other_frame) return;
   PreprocessConfig fine = config_.preprocess;
-  fine.voxel_size_m = config_.keyframe_cloud_voxel_m;
+  if (fine_grid) fine.voxel_size_m = config_.keyframe_cloud_voxel_m;
   fine.max_points = 0;  // walls and terrain want the dense cloud: the budget is the odometry's
   result->keyframe_cloud.reset(new PointCloud(preprocess(scan, fine)));
 }
