@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cstring>
@@ -57,6 +58,21 @@ TEST(SimStream, DeterministicPerSeed) {
   SimScan scan;
   s.render(5, &scan);
   EXPECT_TRUE(sameBytes({scan}, {a[5]}));
+}
+
+TEST(SimStream, SweepsAreTheSameForAnyThreadCount) {
+  // The firings are cast in blocks side by side (ScanStream::render).
+  World w = lRoom();
+  w.sensor.motion_distortion = true;
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const auto one = renderAll(w, SimOptions{});
+  omp_set_num_threads(3);
+  const auto three = renderAll(w, SimOptions{});
+  omp_set_num_threads(threads);
+  ASSERT_FALSE(one.empty());
+  EXPECT_GT(one[3].points.size(), 1000u);
+  EXPECT_TRUE(sameBytes(one, three));
 }
 
 TEST(SimStream, GroundTruthFollowsWaypoints) {

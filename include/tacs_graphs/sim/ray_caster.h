@@ -23,10 +23,23 @@ class RayCaster {
   /// `cell_size_m`: grid pitch; about the size of a door or a piece of furniture works best.
   explicit RayCaster(const World& world, double cell_size_m = 1.0);
 
+  /// Per-primitive "already tested" marks of one ray after another: a primitive spanning several
+  /// grid cells is tested once per ray. One per thread.
+  struct Marks {
+    std::vector<uint32_t> mailbox;
+    uint32_t ray_id = 0;
+  };
+  Marks newMarks() const { return Marks{std::vector<uint32_t>(primitiveCount(), 0), 0}; }
+
   /// Nearest hit along origin + t * direction for t in (0, max_range]. `direction` must be unit.
-  /// Not thread-safe (one caster per thread): it keeps a per-primitive "already tested" mark.
+  /// Threads casting at once each pass their own `marks` (newMarks()).
   bool cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double max_range,
-            RayHit* hit) const;
+            RayHit* hit, Marks* marks) const;
+  /// The same with the caster's own marks: not thread-safe.
+  bool cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double max_range,
+            RayHit* hit) const {
+    return cast(origin, direction, max_range, hit, &marks_);
+  }
 
   size_t primitiveCount() const { return boxes_.size() + planes_.size(); }
 
@@ -62,8 +75,7 @@ class RayCaster {
   int nx_ = 0, ny_ = 0;
   std::vector<uint32_t> cell_start_;
   std::vector<uint32_t> prim_ids_;
-  mutable std::vector<uint32_t> mailbox_;
-  mutable uint32_t ray_id_ = 0;
+  mutable Marks marks_;
 };
 
 }  // namespace tacs::sim

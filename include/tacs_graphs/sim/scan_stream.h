@@ -54,6 +54,10 @@ class ScanStream {
   uint64_t seed() const { return seed_; }
 
  private:
+  /// The returns of firings [begin, end) of sweep `index`, in firing order.
+  void renderColumns(size_t index, size_t begin, size_t end, RayCaster::Marks* marks,
+                     std::vector<SimPoint>* out) const;
+
   World world_;
   SimOptions options_;
   SensorSpec sensor_;

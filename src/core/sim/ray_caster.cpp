@@ -83,7 +83,7 @@ void RayCaster::buildGrid(double cell_size_m) {
     cell_start_[i + 1] = cell_start_[i] + cells[i].size();
     prim_ids_.insert(prim_ids_.end(), cells[i].begin(), cells[i].end());
   }
-  mailbox_.assign(bounds.size(), 0);
+  marks_ = newMarks();
 }
 
 bool RayCaster::hitBox(const OrientedBox& b, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
@@ -142,7 +142,7 @@ bool RayCaster::hitPrimitive(uint32_t id, const Eigen::Vector3d& o, const Eigen:
 }
 
 bool RayCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range,
-                     RayHit* hit) const {
+                     RayHit* hit, Marks* marks) const {
   // Clip the ray to the grid rectangle.
   double t_enter = 0.0, t_exit = max_range;
   const Eigen::Vector2d grid_hi = origin_ + cell_ * Eigen::Vector2d(nx_, ny_);
@@ -158,9 +158,10 @@ bool RayCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double 
   }
   if (t_enter > t_exit) return false;
 
-  if (++ray_id_ == 0) {  // wrapped: clear the marks
-    std::fill(mailbox_.begin(), mailbox_.end(), 0);
-    ray_id_ = 1;
+  std::vector<uint32_t>& mailbox = marks->mailbox;
+  if (++marks->ray_id == 0) {  // wrapped: clear the marks
+    std::fill(mailbox.begin(), mailbox.end(), 0);
+    marks->ray_id = 1;
   }
   const Eigen::Vector2d p = (o.head<2>() + t_enter * d.head<2>() - origin_) / cell_;
   int ix = std::clamp(static_cast<int>(p.x()), 0, nx_ - 1);
@@ -181,8 +182,8 @@ bool RayCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double 
     const size_t cell = static_cast<size_t>(iy) * nx_ + ix;
     for (uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
       const uint32_t id = prim_ids_[k];
-      if (mailbox_[id] == ray_id_) continue;
-      mailbox_[id] = ray_id_;
+      if (mailbox[id] == marks->ray_id) continue;
+      mailbox[id] = marks->ray_id;
       if (hitPrimitive(id, o, d, best, &candidate)) {
         best = candidate.range;
         *hit = candidate;

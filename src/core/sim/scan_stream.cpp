@@ -60,17 +60,42 @@ bool ScanStream::next(SimScan* scan) {
 
 void ScanStream::render(size_t index, SimScan* scan) const {
   const double t0 = index / sensor_.rate_hz;
-  const double period = 1.0 / sensor_.rate_hz;
-  const size_t columns = cos_az_.size();
-  const Pose3 T_base_sensor = baseToSensor();
   scan->stamp = options_.start_stamp + t0;
   scan->T_world_base = path_.poseAt(t0);
   scan->points.clear();
-  scan->points.reserve(columns * cos_el_.size());
-  Pose3 T_world_sensor = scan->T_world_base * T_base_sensor;
+  // Blocks of firings cast side by side, each with its own primitive marks, and joined in firing
+  // order: every ray's noise is seeded by its own index, so the sweep is the same for any
+  // number of threads.
+  constexpr size_t kColumnsPerBlock = 64;
+  const size_t columns = cos_az_.size();
+  const size_t blocks = (columns + kColumnsPerBlock - 1) / kColumnsPerBlock;
+  std::vector<std::vector<SimPoint>> parts(blocks);
+#pragma omp parallel
+  {
+    RayCaster::Marks marks = caster_->newMarks();
+#pragma omp for schedule(dynamic, 1)
+    for (size_t b = 0; b < blocks; ++b) {
+      renderColumns(index, b * kColumnsPerBlock, std::min(columns, (b + 1) * kColumnsPerBlock),
+                    &marks, &parts[b]);
+    }
+  }
+  size_t total = 0;
+  for (const auto& part : parts) total += part.size();
+  scan->points.reserve(total);
+  for (const auto& part : parts) scan->points.insert(scan->points.end(), part.begin(), part.end());
+}
+
+void ScanStream::renderColumns(size_t index, size_t begin, size_t end, RayCaster::Marks* marks,
+                               std::vector<SimPoint>* out) const {
+  const double t0 = index / sensor_.rate_hz;
+  const double period = 1.0 / sensor_.rate_hz;
+  const size_t columns = cos_az_.size();
+  const Pose3 T_base_sensor = baseToSensor();
+  Pose3 T_world_sensor = path_.poseAt(t0) * T_base_sensor;
   const uint64_t scan_key = mixSeed(seed_, index);
+  out->reserve((end - begin) * cos_el_.size());
   RayHit hit;
-  for (size_t c = 0; c < columns; ++c) {
+  for (size_t c = begin; c < end; ++c) {
     const double dt = period * c / columns;
     if (sensor_.motion_distortion) T_world_sensor = path_.poseAt(t0 + dt) * T_base_sensor;
     const Eigen::Matrix3d R = T_world_sensor.linear();
@@ -78,7 +103,7 @@ void ScanStream::render(size_t index, SimScan* scan) const {
     for (size_t r = 0; r < cos_el_.size(); ++r) {
       const Eigen::Vector3d dir_s(cos_el_[r] * cos_az_[c], cos_el_[r] * sin_az_[c], sin_el_[r]);
       const Eigen::Vector3d dir_w = R * dir_s;
-      if (!caster_->cast(origin, dir_w, sensor_.max_range_m, &hit)) continue;
+      if (!caster_->cast(origin, dir_w, sensor_.max_range_m, &hit, marks)) continue;
       const RayNoise noise(mixSeed(scan_key, c * cos_el_.size() + r));
       if (noise.uniform < sensor_.dropout_prob) continue;
       const double range = hit.range + sensor_.range_noise_std_m * noise.gauss_a;
@@ -89,10 +114,10 @@ void ScanStream::render(size_t index, SimScan* scan) const {
           255.0 * hit.reflectivity * (0.25 + 0.75 * incidence) / (1.0 + 0.02 * hit.range) +
           sensor_.intensity_noise * noise.gauss_b;
       const Eigen::Vector3d p = dir_s * range;
-      scan->points.push_back({static_cast<float>(p.x()), static_cast<float>(p.y()),
-                              static_cast<float>(p.z()),
-                              static_cast<float>(std::clamp(intensity, 0.0, 255.0)),
-                              static_cast<uint16_t>(r), static_cast<float>(dt)});
+      out->push_back({static_cast<float>(p.x()), static_cast<float>(p.y()),
+                      static_cast<float>(p.z()),
+                      static_cast<float>(std::clamp(intensity, 0.0, 255.0)),
+                      static_cast<uint16_t>(r), static_cast<float>(dt)});
     }
   }
 }
