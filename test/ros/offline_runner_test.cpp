@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "common/test_paths.h"
+#include "tacs_graphs/ros/sim_bag_writer.h"
 
 namespace tacs {
 namespace {
@@ -115,6 +116,35 @@ TEST_F(OfflineRunner, ARunReplacesAFormerRunWholeAndCtrlCLeavesItAsItWas) {
   EXPECT_NE(stopped.output.find("error: interrupted"), std::string::npos) << stopped.output;
   EXPECT_EQ(fs::last_write_time(out / "trajectory_tum.txt"), stamp);
   EXPECT_EQ(entries(root_), 1u);
+}
+
+size_t occurrences(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST_F(OfflineRunner, ABagWithoutAUsableScanFailsAndWritesNothing) {
+  // Six scans whose returns all lie at the sensor (a driver's "no return" points): each is
+  // rejected for the same reason, reported once, and no run folder appears.
+  const fs::path bag = root_ / "origin.bag";
+  {
+    SimBagWriter writer(bag.string(), Pose3::Identity(), SimBagWriter::Options{});
+    sim::SimScan scan;
+    scan.points.assign(3000, {0.f, 0.f, 0.f, 10.f, 0, 0.0f});
+    for (int i = 0; i < 6; ++i) {
+      scan.stamp = 1000.0 + 0.1 * i;
+      writer.write(scan);
+    }
+  }
+  const fs::path out = root_ / "run";
+  const Outcome r =
+      runOffline("--bag " + bag.string() + " --topic /velodyne_points --out " + out.string());
+  EXPECT_EQ(r.exit_status, 1);
+  EXPECT_NE(r.output.find("error: no usable scan among 6"), std::string::npos) << r.output;
+  EXPECT_EQ(occurrences(r.output, "rejected:"), 1u) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(entries(root_), 1u);  // the bag alone: nothing staged left beside it
 }
 
 TEST_F(OfflineRunner, TacsEvalKeepsItsOwnFilesBesideEachRunFolder) {

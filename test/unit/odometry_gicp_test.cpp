@@ -143,6 +143,24 @@ TEST(Gicp, EvaluateScoresTheTruthBetterThanAWrongPose) {
   EXPECT_GT(good.inlier_ratio, bad.inlier_ratio);
 }
 
+TEST(Gicp, InlierRatioIsEvaluatesWithoutTheHessian) {
+  const test::BoxRoom room;
+  const Pose3 T_world_target = poseFromXyzRpy(4.0, 3.0, 0.5, 0, 0, 0);
+  const Pose3 T_world_source = poseFromXyzRpy(4.5, 3.0, 0.5, 0, 0, 0.2);
+  GicpConfig config;
+  config.max_correspondence_distance_m = 0.3;  // the odometry's fit test gate
+  Gicp gicp(config);
+  gicp.setTarget(preprocessed(test::renderScan(room, T_world_target, 4)));
+  gicp.setSource(preprocessed(test::renderScan(room, T_world_source, 5)));
+  const Pose3 truth = T_world_target.inverse() * T_world_source;
+  for (const Pose3& T : {truth, poseFromXyzRpy(0.2, 0.1, 0, 0, 0, 0.3), Pose3::Identity()}) {
+    EXPECT_EQ(gicp.inlierRatio(T), gicp.evaluate(T).inlier_ratio);
+  }
+  EXPECT_GT(gicp.inlierRatio(truth), 0.8);
+  EXPECT_LT(gicp.inlierRatio(poseFromXyzRpy(0, 1.5, 0, 0, 0, 1.0)), gicp.inlierRatio(truth));
+  EXPECT_EQ(Gicp(config).inlierRatio(truth), 0.0);  // no clouds
+}
+
 // The source sees a cabinet 0.3 m in front of a wall that the target does not hold (as a scan
 // sees a surface its local map lacks, e.g. through a doorway). Its face pairs with the wall behind
 // within the gate; least squares gives those pairs a weight that drags the pose toward the wall,

@@ -135,6 +135,9 @@ class Gicp {
 
   /// Fitness, inliers and information of a given T_target_source, without optimising.
   GicpResult evaluate(const Pose3& T_target_source) const;
+  /// evaluate()'s inlier_ratio alone: the share of source points with a target point within
+  /// max_correspondence_distance_m, without building the Hessian (a fit test).
+  double inlierRatio(const Pose3& T_target_source) const;
 
  private:
   struct Linearization;

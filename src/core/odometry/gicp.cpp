@@ -202,6 +202,26 @@ GicpResult Gicp::evaluate(const Pose3& T_target_source) const {
   return result;
 }
 
+double Gicp::inlierRatio(const Pose3& T_target_source) const {
+  if (!target_ || !source_ || target_->empty() || source_->empty()) return 0.0;
+  struct Count {
+    size_t n = 0;
+    Count& operator+=(const Count& o) {
+      n += o.n;
+      return *this;
+    }
+  };
+  const auto& src = source_->points();
+  const double max_sq =
+      config_.max_correspondence_distance_m * config_.max_correspondence_distance_m;
+  const Count found = parallelReduce<Count>(
+      static_cast<int64_t>(src.size()), config_.num_threads, [&](int64_t i, Count& acc) {
+        double dist_sq = 0.0;
+        if (target_->nearest(T_target_source * src[i], max_sq, &dist_sq, -1) >= 0) ++acc.n;
+      });
+  return static_cast<double>(found.n) / src.size();
+}
+
 GicpResult Gicp::align(const Pose3& initial_guess) const {
   Stopwatch watch;
   GicpResult result;

@@ -139,7 +139,7 @@ double LidarOdometry::fitOf(const GicpCloud::ConstPtr& scan, const Pose3& T) con
   Gicp gicp(gated);
   gicp.setTarget(local_map_);
   gicp.setSource(scan);
-  return gicp.evaluate(T).inlier_ratio;
+  return gicp.inlierRatio(T);
 }
 
 bool LidarOdometry::withinLimits(const Pose3& guess, const Pose3& T) const {
