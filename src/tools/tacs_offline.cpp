@@ -4,9 +4,11 @@
 
 #include <atomic>
 #include <csignal>
+#include <future>
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -164,8 +166,13 @@ class WorldSource : public ScanSource {
   WorldSource(const Options& o, const tacs::PointTimeConfig& point_times)
       : world_(tacs::sim::loadWorld(o.world)), stream_(world_, o.sim), point_times_(point_times) {}
   bool next(SensorScan* scan) override {
-    tacs::sim::SimScan s;
-    if (!stream_.next(&s)) return false;
+    // The next sweep is cast while the pipeline handles this one (rendering is pure: the sweep
+    // is the same whichever thread casts it).
+    if (!ahead_.valid()) ahead_ = renderAhead();
+    std::optional<tacs::sim::SimScan> rendered = ahead_.get();
+    if (!rendered) return false;
+    ahead_ = renderAhead();
+    const tacs::sim::SimScan& s = *rendered;
     scan->stamp = s.stamp;
     scan->frame_id = "velodyne";
     scan->cloud = tacs::sim::toPointCloud(s);
@@ -187,9 +194,18 @@ class WorldSource : public ScanSource {
   }
 
  private:
+  std::future<std::optional<tacs::sim::SimScan>> renderAhead() {
+    return std::async(std::launch::async, [this]() -> std::optional<tacs::sim::SimScan> {
+      tacs::sim::SimScan s;
+      if (!stream_.next(&s)) return std::nullopt;
+      return s;
+    });
+  }
+
   tacs::sim::World world_;
   tacs::sim::ScanStream stream_;
   tacs::PointTimeConfig point_times_;
+  std::future<std::optional<tacs::sim::SimScan>> ahead_;
 };
 
 /// ATE of the optimised keyframes and of the raw odometry when ground truth exists.
