@@ -1,6 +1,7 @@
 // The odometry on distorted sweeps: a simulated sensor swept while the robot drives at 1.5 m/s
 // and turns at up to 90 deg/s, each firing from the pose at its time (issue "real sensors").
 #include <gtest/gtest.h>
+#include <pcl/common/transforms.h>
 
 #include <algorithm>
 #include <cmath>
@@ -52,14 +53,9 @@ Errors runOdometry(const OdometryConfig& config) {
   sim::SimScan scan;
   while (stream.next(&scan)) {
     PointCloud cloud;
+    pcl::transformPointCloud(sim::toPointCloud(scan), cloud, T_base_sensor.cast<float>());
     std::vector<float> times;
-    for (const auto& p : scan.points) {
-      pcl::PointXYZI q;
-      q.getVector3fMap() = (T_base_sensor * Eigen::Vector3d(p.x, p.y, p.z)).cast<float>();
-      q.intensity = p.intensity;
-      cloud.push_back(q);
-      times.push_back(p.time);
-    }
+    for (const auto& p : scan.points) times.push_back(p.time);
     const OdometryResult r = odometry.process(scan.stamp, cloud, &times);
     if (n == 0) T_world_odom = scan.T_world_base;
     ++n;
@@ -69,12 +65,12 @@ Errors runOdometry(const OdometryConfig& config) {
     }
     const Pose3 error = (T_world_odom * r.T_odom_base).inverse() * scan.T_world_base;
     e.rms_m += error.translation().squaredNorm();
-    e.max_deg = std::max(e.max_deg, Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI);
+    e.max_deg = std::max(e.max_deg, rotationAngleDeg(error));
     if (n > 1) {
       const Pose3 step_error = (last_estimate.inverse() * r.T_odom_base).inverse() *
                                (last_truth.inverse() * scan.T_world_base);
       e.step_m += step_error.translation().norm();
-      e.step_deg += Eigen::AngleAxisd(step_error.linear()).angle() * 180.0 / M_PI;
+      e.step_deg += rotationAngleDeg(step_error);
     }
     last_estimate = r.T_odom_base;
     last_truth = scan.T_world_base;
