@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <filesystem>
 #include <future>
 #include <iomanip>
 #include <iostream>
@@ -12,12 +13,14 @@
 #include <set>
 #include <string>
 
+#include "tacs_graphs/common/file_io.h"
 #include "tacs_graphs/common/message_reason.h"
 #include "tacs_graphs/common/timing.h"
 #include "tacs_graphs/common/trajectory_io.h"
 #include "tacs_graphs/eval/trajectory_metrics.h"
 #include "tacs_graphs/pipeline/run_folder.h"
 #include "tacs_graphs/pipeline/staged_run_folder.h"
+#include "tacs_graphs/relocalization/prior_session.h"
 #include "tacs_graphs/ros/bag_scan_source.h"
 #include "tacs_graphs/sim/ground_truth.h"
 #include "tacs_graphs/sim/scan_stream.h"
@@ -37,6 +40,7 @@ void printUsage() {
          "--topic T      PointCloud2 topic of the bag (default /velodyne_points)\n"
          "--seed N       simulator noise seed (default: the world's)\n"
          "--duration S   simulate only the first S seconds\n"
+         "--start-waypoint K  start the world's trajectory at waypoint K (tacs_sim --help)\n"
          "--poses TUM    take the odometry from this trajectory ('t x y z qx qy qz qw', sorted)\n"
          "               instead of GICP, interpolated at each scan's stamp; scans outside its\n"
          "               time span are skipped and counted. Walls, traversability, rooms, loops\n"
@@ -45,6 +49,13 @@ void printUsage() {
          "--reference TUM  a reference trajectory of the base: ATE against it is printed and\n"
          "               it is kept as DIR/reference_tum.txt\n"
          "--config YAML  configuration (default: built-in defaults = config/default.yaml)\n"
+         "--prior RUN_DIR  a run folder of an earlier session (scene_graph.json, map.pcd): the\n"
+         "               session relocalizes in it by its rooms; once placed, DIR/ is in the\n"
+         "               prior's map frame and scene_graph.json is the prior's graph with this\n"
+         "               session merged in (re-observed rooms and walls keep their ids).\n"
+         "               DIR/localization.json says whether and where it was placed.\n"
+         "--localize-only  with --prior: scene_graph.json is the prior's, byte for byte; the\n"
+         "               session's own graph is DIR/session_graph.json\n"
          "The sensor extrinsic comes from the bag's /tf_static (frames.base_frame -> cloud "
          "frame),\n"
          "else from frames.base_to_sensor. Exit status: 0 ok, 1 error, 2 bad command line.\n";
@@ -52,9 +63,9 @@ void printUsage() {
 
 struct Options {
   std::string bag, topic = "/velodyne_points", world, config, out, poses, poses_frame = "base",
-                   reference;
+                   reference, prior;
   tacs::sim::SimOptions sim;
-  bool quiet = false;
+  bool quiet = false, localize_only = false;
 };
 
 Options parse(int argc, char** argv) {
@@ -75,6 +86,8 @@ Options parse(int argc, char** argv) {
       o.sim.seed = std::stoull(argv[++i]);
     } else if (arg == "--duration" && has_value) {
       o.sim.duration_s = std::stod(argv[++i]);
+    } else if (arg == "--start-waypoint" && has_value) {
+      o.sim.start_waypoint = std::stoi(argv[++i]);
     } else if (arg == "--reference" && has_value) {
       o.reference = argv[++i];
     } else if (arg == "--poses" && has_value) {
@@ -88,6 +101,10 @@ Options parse(int argc, char** argv) {
       o.config = argv[++i];
     } else if (arg == "--out" && has_value) {
       o.out = argv[++i];
+    } else if (arg == "--prior" && has_value) {
+      o.prior = argv[++i];
+    } else if (arg == "--localize-only") {
+      o.localize_only = true;
     } else if (arg == "--quiet") {
       o.quiet = true;
     } else {
@@ -96,6 +113,8 @@ Options parse(int argc, char** argv) {
   }
   if (o.bag.empty() == o.world.empty()) throw std::invalid_argument("give --bag or --world");
   if (o.out.empty()) throw std::invalid_argument("--out is required");
+  if (o.localize_only && o.prior.empty())
+    throw std::invalid_argument("--localize-only needs --prior");
   return o;
 }
 
@@ -229,6 +248,59 @@ void printAccuracy(const tacs::Pipeline& pipeline, const tacs::Trajectory& groun
   }
 }
 
+/// The prior map of --prior, read before the first scan (a bad one fails at once, naming the
+/// file); --out may not be the prior's folder, which is only ever read.
+std::unique_ptr<tacs::PriorSession> loadPrior(const Options& o,
+                                              const tacs::RelocalizationConfig& config) {
+  if (o.prior.empty()) return nullptr;
+  std::error_code ec;
+  if (std::filesystem::exists(o.out, ec) && std::filesystem::equivalent(o.prior, o.out, ec)) {
+    throw std::runtime_error("--out " + o.out + " is the prior's folder; give another");
+  }
+  return std::make_unique<tacs::PriorSession>(
+      tacs::PriorMap::load(o.prior),
+      o.localize_only ? tacs::PriorMode::kLocalizeOnly : tacs::PriorMode::kMerge, config);
+}
+
+/// How the run folder is written: in the prior's frame once the session is placed in it.
+tacs::RunView priorView(const tacs::PriorSession* prior, const tacs::Pipeline& pipeline) {
+  tacs::RunView view;
+  if (!prior || !prior->localized()) return view;
+  view.T_out_map = prior->T_prior_session();
+  view.graph = prior->outputGraph(pipeline.sceneGraph());
+  if (prior->mode() == tacs::PriorMode::kMerge) view.extra_map_points = prior->prior().points;
+  return view;
+}
+
+/// localization.json, and in localize-only mode the prior's graph byte for byte with the
+/// session's own beside it.
+void writePriorFiles(const std::string& dir, const tacs::PriorSession& prior,
+                     const tacs::Pipeline& pipeline) {
+  tacs::writeFileAtomically(dir + "/localization.json", prior.localizationJson().dump(2) + "\n");
+  if (!prior.localized()) return;
+  pipeline.sceneGraph().transformed(prior.T_prior_session()).save(dir + "/session_graph.json");
+  if (prior.mode() == tacs::PriorMode::kLocalizeOnly) {
+    std::filesystem::copy_file(prior.prior().dir + "/scene_graph.json", dir + "/scene_graph.json",
+                               std::filesystem::copy_options::overwrite_existing);
+  }
+}
+
+void printLocalization(const tacs::PriorSession& prior) {
+  const nlohmann::json j = prior.localizationJson();
+  std::cout << "[tacs_offline] " << j["status"].get<std::string>();
+  if (prior.localized()) {
+    const auto& first = j["first_localization"];
+    std::cout << std::fixed << std::setprecision(2) << " after "
+              << first["distance_m"].get<double>() << " m (room " << first["session_room"]
+              << " = prior room " << first["prior_room"] << ", score "
+              << first["score"].get<double>() << " against "
+              << first["runner_up_score"].get<double>() << "), " << prior.roomPairs().size()
+              << " rooms paired";
+  }
+  std::cout << "; " << j["attempts"] << " attempts, " << j["rejected_hypotheses"]
+            << " hypotheses rejected\n";
+}
+
 // Ctrl-C stops reading scans and leaves --out as it was; a second one kills at once.
 std::atomic<bool> interrupted{false};
 extern "C" void onInterrupt(int) {
@@ -253,6 +325,8 @@ int run(const Options& o) {
   }
   const tacs::Trajectory reference =
       o.reference.empty() ? tacs::Trajectory() : tacs::readTum(o.reference, true);
+  const std::unique_ptr<tacs::PriorSession> prior = loadPrior(o, loaded.config.relocalization);
+  double driven_m = 0.0;  // along the odometry, for localization.json
   std::unique_ptr<ScanSource> source;
   if (!o.bag.empty()) {
     source =
@@ -302,6 +376,15 @@ int run(const Options& o) {
     if (!outcome.accepted && reported.insert(tacs::messageReason(outcome.error)).second) {
       std::cerr << "\n[tacs_offline] scan " << k << " rejected: " << outcome.error << "\n";
     }
+    const tacs::Trajectory& odometry = pipeline_ptr->odometryTrajectory();
+    if (outcome.accepted && odometry.size() > 1) {
+      driven_m +=
+          (odometry.back().pose.translation() - odometry.end()[-2].pose.translation()).norm();
+    }
+    if (prior && outcome.rooms > 0) {
+      prior->update(pipeline_ptr->sceneGraph(), pipeline_ptr->keyframeClouds(), scan.stamp,
+                    driven_m);
+    }
     if (!o.quiet && (k % 20 == 0 || k == source->size())) {
       std::cerr << "\r[tacs_offline] scan " << k << "/" << source->size() << "  keyframes "
                 << pipeline_ptr->stats().keyframes << "  walls "
@@ -330,10 +413,16 @@ int run(const Options& o) {
                              "; nothing written to " + o.out);
   }
   pipeline.finish();
+  if (prior) {
+    prior->finish(pipeline.sceneGraph(), pipeline.keyframeClouds(),
+                  pipeline.odometryTrajectory().back().stamp, driven_m);
+  }
   const double wall_s = watch.elapsedMs() / 1e3;
   if (!o.quiet) std::cerr << "\n";
   const auto export_ms =
-      tacs::writeRunFolder(out.stagingPath(), pipeline, {o.bag.empty() ? o.world : o.bag, wall_s});
+      tacs::writeRunFolder(out.stagingPath(), pipeline, {o.bag.empty() ? o.world : o.bag, wall_s},
+                           priorView(prior.get(), pipeline));
+  if (prior) writePriorFiles(out.stagingPath(), *prior, pipeline);
   source->writeGroundTruth(out.stagingPath());
   if (!reference.empty()) tacs::writeTum(out.stagingPath() + "/reference_tum.txt", reference);
   out.commit();
@@ -351,6 +440,7 @@ int run(const Options& o) {
   std::cout << "[tacs_offline] run folder written in" << std::setprecision(1);
   for (const auto& [name, ms] : export_ms) std::cout << " " << name << " " << ms / 1e3 << " s";
   std::cout << "\n";
+  if (prior) printLocalization(*prior);
   printAccuracy(pipeline, reference.empty() ? source->groundTruth() : reference);
   return stats.scans > stats.rejected_scans ? 0 : 1;
 }

@@ -14,6 +14,7 @@ namespace {
 void printUsage() {
   std::cout
       << "Usage: tacs_sim WORLD.json --out DIR [--seed N] [--duration S] [--motion-distortion]\n"
+         "                [--start-waypoint K]\n"
          "Simulates the LiDAR of WORLD.json along its trajectory and writes\n"
          "  DIR/sequence.bag          /velodyne_points (PointCloud2: x y z intensity ring time,\n"
          "                            frame velodyne), /tf_static (base_link -> velodyne),\n"
@@ -23,6 +24,8 @@ void printUsage() {
          "--seed N       noise seed (default: the world's sensor.seed); same seed, same bytes\n"
          "--duration S   stop after S seconds (default: the whole trajectory)\n"
          "--motion-distortion  cast every firing from the pose at its own time\n"
+         "--start-waypoint K  start the trajectory at waypoint K (a closed path is driven round\n"
+         "               back to K, an open one to its end and back to its first waypoint)\n"
          "Exit status: 0 ok, 1 error (bad world file, I/O), 2 bad command line.\n";
 }
 }  // namespace
@@ -43,6 +46,8 @@ int main(int argc, char** argv) {
         options.seed = std::stoull(argv[++i]);
       } else if (arg == "--duration" && has_value) {
         options.duration_s = std::stod(argv[++i]);
+      } else if (arg == "--start-waypoint" && has_value) {
+        options.start_waypoint = std::stoi(argv[++i]);
       } else if (arg == "--motion-distortion") {
         options.motion_distortion = true;
       } else if (world_path.empty() && arg.rfind("--", 0) != 0) {

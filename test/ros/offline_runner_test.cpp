@@ -1,6 +1,7 @@
 // tacs_offline run as a user runs it: a fault (an unwritable --out, a folder of something else,
 // Ctrl-C) gives an `error:` line and exit 1 and leaves --out as it was; a run replaces a former
-// run's folder whole.
+// run's folder whole; a second session relocalizes in a first one's folder (--prior) and never
+// changes it.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -10,11 +11,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
 
 #include "common/test_paths.h"
 #include "tacs_graphs/ros/sim_bag_writer.h"
+#include "tacs_graphs/scene_graph/scene_graph.h"
 
 namespace tacs {
 namespace {
@@ -161,6 +165,81 @@ TEST_F(OfflineRunner, TacsEvalKeepsItsOwnFilesBesideEachRunFolder) {
   for (const char* beside : {".config.json", ".log", ".done"}) {
     EXPECT_TRUE(fs::exists(trial.string() + beside)) << beside;
   }
+}
+
+std::string fileBytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::map<std::string, std::string> folderBytes(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::directory_iterator(dir))
+    files[e.path().filename()] = fileBytes(e.path());
+  return files;
+}
+
+TEST_F(OfflineRunner, ASecondSessionRelocalizesInTheFirstsMapAndNeverChangesIt) {
+  const fs::path prior = root_ / "prior", merged = root_ / "merged", local = root_ / "local";
+  ASSERT_EQ(runOffline(world_ + " --seed 1 --out " + prior.string()).exit_status, 0);
+  const auto before = folderBytes(prior);
+  // The second session starts at another waypoint, with other noise.
+  const std::string second = world_ + " --seed 2 --start-waypoint 4 --prior " + prior.string();
+  const Outcome m = runOffline(second + " --out " + merged.string());
+  ASSERT_EQ(m.exit_status, 0) << m.output;
+  EXPECT_NE(m.output.find("[tacs_offline] localized after"), std::string::npos) << m.output;
+  const auto loc = nlohmann::json::parse(fileBytes(merged / "localization.json"));
+  EXPECT_EQ(loc["status"], "localized");
+  EXPECT_EQ(loc["mode"], "merge");
+  EXPECT_FALSE(loc["room_pairs"].empty());
+  // Merged: the prior's rooms are all there, under their ids, and no new room doubles one.
+  const SceneGraph prior_graph = SceneGraph::load((prior / "scene_graph.json").string());
+  const SceneGraph merged_graph = SceneGraph::load((merged / "scene_graph.json").string());
+  for (const auto& [id, room] : prior_graph.rooms) EXPECT_TRUE(merged_graph.rooms.count(id)) << id;
+  const size_t session_rooms =
+      SceneGraph::load((merged / "session_graph.json").string()).rooms.size();
+  EXPECT_EQ(merged_graph.rooms.size(),
+            prior_graph.rooms.size() + session_rooms - loc["room_pairs"].size());
+  EXPECT_GT(merged_graph.keyframes.size(), prior_graph.keyframes.size());
+
+  const Outcome l = runOffline(second + " --localize-only --out " + local.string());
+  ASSERT_EQ(l.exit_status, 0) << l.output;
+  EXPECT_EQ(fileBytes(local / "scene_graph.json"), fileBytes(prior / "scene_graph.json"));
+  EXPECT_EQ(nlohmann::json::parse(fileBytes(local / "localization.json"))["mode"], "localize_only");
+  EXPECT_EQ(folderBytes(prior), before);  // the prior is only ever read
+}
+
+TEST_F(OfflineRunner, ABadPriorFailsBeforeTheFirstScanNamingTheFile) {
+  const fs::path prior = root_ / "prior", out = root_ / "run";
+  fs::create_directories(prior);
+  std::ofstream(prior / "scene_graph.json") << "{\"format\": \"tacs_graphs/scene_graph\", ";
+  const Outcome r = runOffline(world_ + " --prior " + prior.string() + " --out " + out.string());
+  EXPECT_EQ(r.exit_status, 1);
+  EXPECT_NE(r.output.find("error: " + (prior / "scene_graph.json").string() + ": not valid JSON"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("scans ("), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  // --out may not be the prior's own folder.
+  const Outcome same =
+      runOffline(world_ + " --prior " + prior.string() + " --out " + prior.string());
+  EXPECT_EQ(same.exit_status, 1);
+  EXPECT_NE(same.output.find("is the prior's folder"), std::string::npos) << same.output;
+  EXPECT_EQ(fileBytes(prior / "scene_graph.json"), "{\"format\": \"tacs_graphs/scene_graph\", ");
+}
+
+TEST_F(OfflineRunner, ASessionInAnotherBuildingIsNotLocalized) {
+  const fs::path prior = root_ / "prior", out = root_ / "run";
+  ASSERT_EQ(runOffline(world_ + " --out " + prior.string()).exit_status, 0);
+  const Outcome r =
+      runOffline("--world " + test::sourceDir() + "/worlds/lab_room.json --duration 40 --prior " +
+                 prior.string() + " --out " + out.string());
+  ASSERT_EQ(r.exit_status, 0) << r.output;
+  EXPECT_NE(r.output.find("[tacs_offline] not_localized"), std::string::npos) << r.output;
+  const auto loc = nlohmann::json::parse(fileBytes(out / "localization.json"));
+  EXPECT_EQ(loc["status"], "not_localized");
+  EXPECT_GE(loc["attempts"].get<int>(), 1);
+  EXPECT_FALSE(loc.contains("T_prior_session"));
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "tacs_graphs/common/frames.h"
 #include "tacs_graphs/loop_closure/loop_closure_config.h"
 #include "tacs_graphs/odometry/lidar_odometry.h"
+#include "tacs_graphs/relocalization/room_relocalizer.h"
 #include "tacs_graphs/rooms/rooms_config.h"
 #include "tacs_graphs/traversability/traversability_config.h"
 #include "tacs_graphs/walls/walls_config.h"
@@ -26,6 +27,7 @@ struct PipelineConfig {
   MapExportConfig map_export;
   RoomsConfig rooms;
   LoopClosureConfig loop_closure;
+  RelocalizationConfig relocalization;  // used with a prior map only
 
   template <class V>
   void visit(V& v) {
@@ -37,6 +39,7 @@ struct PipelineConfig {
     v("map_export", map_export);
     v("rooms", rooms);
     v("loop_closure", loop_closure);
+    v("relocalization", relocalization);
   }
   void validate() const;
 };

@@ -83,6 +83,9 @@ struct SceneGraph {
 
   /// Wall nodes that are walls of the building (WallNode::is_wall), not other planes.
   size_t wallCount() const;
+  /// The graph moved into another map frame: T_new_map applied to every pose, plane, wall end and
+  /// room (2D parts by its yaw and xy shift: the frames share gravity). Loops are relative.
+  SceneGraph transformed(const Pose3& T_new_map) const;
 
   nlohmann::json toJson() const;
   /// Throws std::runtime_error naming the bad field ("rooms[2].kind: ...").

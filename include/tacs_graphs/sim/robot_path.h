@@ -15,6 +15,13 @@
 
 namespace tacs::sim {
 
+/// The world's trajectory started at waypoint `k` instead of the first, so a second session
+/// starts elsewhere in the same building. A closed path (last waypoint = first) is driven round
+/// from `k` back to `k`; an open path is driven from `k` to its end and back to its first
+/// waypoint (every segment is one of the world's, so the path never crosses a wall). Laps and
+/// speeds are kept. Throws WorldError when `k` is not a waypoint index.
+TrajectorySpec startingAtWaypoint(const TrajectorySpec& spec, int k, const std::string& name);
+
 class RobotPath {
  public:
   /// Throws WorldError when a waypoint or a part of the path is not above any floor.

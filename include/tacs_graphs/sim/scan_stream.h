@@ -34,6 +34,7 @@ struct SimOptions {
   double duration_s = 0.0;                // 0: the whole trajectory
   double start_stamp = 1000.0;            // [s] stamp of the first scan
   std::optional<bool> motion_distortion;  // overrides sensor.motion_distortion when set
+  int start_waypoint = 0;  // the trajectory starts at this waypoint (startingAtWaypoint)
 };
 
 class ScanStream {

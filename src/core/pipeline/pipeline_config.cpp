@@ -11,6 +11,7 @@ void PipelineConfig::validate() const {
   map_export.validate();
   rooms.validate();
   loop_closure.validate();
+  relocalization.validate();
 }
 
 LoadedPipelineConfig loadPipelineConfig(const std::string& yaml_path) {

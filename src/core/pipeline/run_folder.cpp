@@ -6,6 +6,7 @@
 #include "tacs_graphs/common/file_io.h"
 #include "tacs_graphs/common/timing.h"
 #include "tacs_graphs/common/trajectory_io.h"
+#include "tacs_graphs/odometry/preprocess.h"
 #include "tacs_graphs/viz/scene_graph_drawing.h"
 
 namespace tacs {
@@ -54,8 +55,18 @@ void writeTopdown(const std::string& path, const SceneGraph& graph, const PointC
   canvas.savePng(path);
 }
 
+namespace {
+
+Trajectory moved(const Trajectory& trajectory, const Pose3& T) {
+  Trajectory out = trajectory;
+  for (StampedPose& p : out) p.pose = T * p.pose;
+  return out;
+}
+
+}  // namespace
+
 std::map<std::string, double> writeRunFolder(const std::string& dir, const Pipeline& pipeline,
-                                             const RunInfo& info) {
+                                             const RunInfo& info, const RunView& view) {
   ensureDirectory(dir);
   std::map<std::string, double> ms;
   Stopwatch watch;
@@ -63,18 +74,22 @@ std::map<std::string, double> writeRunFolder(const std::string& dir, const Pipel
     ms[name] = watch.elapsedMs();
     watch = Stopwatch();
   };
-  const SceneGraph graph = pipeline.sceneGraph();
+  const SceneGraph session = pipeline.sceneGraph().transformed(view.T_out_map);
+  const SceneGraph& graph = view.graph ? *view.graph : session;
   const MapExportConfig& map_config = pipeline.config().map_export;
-  writeTum(dir + "/trajectory_tum.txt", pipeline.keyframeTrajectory());
-  writeTum(dir + "/odometry_tum.txt", pipeline.odometryTrajectory());
+  writeTum(dir + "/trajectory_tum.txt", moved(pipeline.keyframeTrajectory(), view.T_out_map));
+  writeTum(dir + "/odometry_tum.txt", moved(pipeline.odometryTrajectory(), view.T_out_map));
   graph.save(dir + "/scene_graph.json");
   writeFileAtomically(dir + "/timing.json", timingJson(pipeline, info).dump(2) + "\n");
   writeFileAtomically(dir + "/config.json", configToJson(pipeline.config()).dump(2) + "\n");
   lap("graph");
-  const PointCloud map = buildMapCloud(graph, pipeline.keyframeClouds(), map_config.cloud_voxel_m);
+  PointCloud map = buildMapCloud(session, pipeline.keyframeClouds(), map_config.cloud_voxel_m);
+  if (!view.extra_map_points.empty()) {
+    map = voxelDownsample(map + view.extra_map_points, map_config.cloud_voxel_m);
+  }
   writePcdAtomically(dir + "/map.pcd", map);
   lap("map.pcd");
-  writeOctomap(dir + "/map.bt", graph, pipeline.keyframeClouds(), map_config);
+  writeOctomap(dir + "/map.bt", session, pipeline.keyframeClouds(), map_config);
   lap("map.bt");
   writeTopdown(dir + "/topdown.png", graph, map, map_config.topdown_resolution_m);
   lap("topdown.png");

@@ -15,10 +15,19 @@ namespace {
 
 // The files of a run folder (docs/DESIGN.md), and the temporaries they are written through.
 bool isRunFile(const fs::path& name) {
-  static const char* const kFiles[] = {
-      "trajectory_tum.txt",   "odometry_tum.txt",  "scene_graph.json", "timing.json",
-      "config.json",          "map.pcd",           "map.bt",           "topdown.png",
-      "ground_truth_tum.txt", "ground_truth.json", "reference_tum.txt"};
+  static const char* const kFiles[] = {"trajectory_tum.txt",
+                                       "odometry_tum.txt",
+                                       "scene_graph.json",
+                                       "timing.json",
+                                       "config.json",
+                                       "map.pcd",
+                                       "map.bt",
+                                       "topdown.png",
+                                       "ground_truth_tum.txt",
+                                       "ground_truth.json",
+                                       "reference_tum.txt",
+                                       "localization.json",
+                                       "session_graph.json"};
   const std::string s = name.string();
   if (name.extension() == ".tmp") return true;
   return std::any_of(std::begin(kFiles), std::end(kFiles), [&](const char* f) { return s == f; });

@@ -1,6 +1,7 @@
 #include "tacs_graphs/scene_graph/scene_graph.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <stdexcept>
 
@@ -97,6 +98,26 @@ const char* roomKindName(RoomKind kind) { return kind == RoomKind::kRoom ? "room
 size_t SceneGraph::wallCount() const {
   return static_cast<size_t>(
       std::count_if(walls.begin(), walls.end(), [](const auto& w) { return w.second.is_wall; }));
+}
+
+SceneGraph SceneGraph::transformed(const Pose3& T) const {
+  SceneGraph out = *this;
+  const Eigen::Rotation2Dd yaw(std::atan2(T.linear()(1, 0), T.linear()(0, 0)));
+  const Eigen::Vector2d shift = T.translation().head<2>();
+  const auto move2 = [&](const Eigen::Vector2d& p) -> Eigen::Vector2d { return yaw * p + shift; };
+  for (auto& [id, kf] : out.keyframes) kf.setPose(T * kf.pose());
+  for (auto& [id, w] : out.walls) {
+    // n . p + d = 0 in the old frame; a point p' = T p gives (R n) . p' + d - (R n) . t = 0.
+    w.normal = T.linear() * w.normal;
+    w.d -= w.normal.dot(T.translation());
+    for (auto& e : w.endpoints) e = move2(e);
+    for (double& z : w.z_range) z += T.translation().z();
+  }
+  for (auto& [id, r] : out.rooms) {
+    r.center = T * r.center;
+    for (auto& p : r.free_space) p = move2(p);
+  }
+  return out;
 }
 
 json SceneGraph::toJson() const {

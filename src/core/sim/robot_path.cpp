@@ -50,6 +50,27 @@ std::vector<Eigen::Vector3d> densePolyline(const World& world, const std::string
 
 }  // namespace
 
+TrajectorySpec startingAtWaypoint(const TrajectorySpec& spec, int k, const std::string& name) {
+  const int n = static_cast<int>(spec.waypoints.size());
+  if (k < 0 || k >= n) {
+    throw WorldError(name + ": start waypoint " + std::to_string(k) + " is not in [0, " +
+                     std::to_string(n - 1) + "]");
+  }
+  TrajectorySpec out = spec;
+  if (k == 0) return out;
+  const auto& w = spec.waypoints;
+  out.waypoints.clear();
+  const bool closed = n > 2 && (w.front().head<2>() - w.back().head<2>()).norm() < 1e-6;
+  if (closed) {
+    for (int i = k; i < n - 1; ++i) out.waypoints.push_back(w[i]);
+    for (int i = 0; i <= k; ++i) out.waypoints.push_back(w[i]);
+  } else {
+    for (int i = k; i < n; ++i) out.waypoints.push_back(w[i]);
+    for (int i = n - 2; i >= 0; --i) out.waypoints.push_back(w[i]);
+  }
+  return out;
+}
+
 RobotPath::RobotPath(const World& world, uint64_t seed, const std::string& name) {
   const TrajectorySpec& spec = world.trajectory;
   jitter_rad_ = spec.jitter_deg * kPi / 180.0;

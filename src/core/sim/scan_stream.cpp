@@ -7,15 +7,23 @@
 
 namespace tacs::sim {
 namespace {
+
 constexpr double kPi = 3.14159265358979323846;
+
+World withStart(const World& world, int start_waypoint) {
+  World started = world;
+  started.trajectory = startingAtWaypoint(world.trajectory, start_waypoint, world.name);
+  return started;
 }
 
+}  // namespace
+
 ScanStream::ScanStream(const World& world, const SimOptions& options)
-    : world_(world),
+    : world_(withStart(world, options.start_waypoint)),
       options_(options),
       sensor_(world.sensor),
       seed_(options.seed.value_or(world.sensor.seed)),
-      path_(world, seed_, world.name) {
+      path_(world_, seed_, world.name) {
   if (options.motion_distortion) sensor_.motion_distortion = *options.motion_distortion;
   caster_ = std::make_unique<RayCaster>(world_);
   double duration = path_.duration();

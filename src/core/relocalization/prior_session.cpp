@@ -1,0 +1,226 @@
+#include "tacs_graphs/relocalization/prior_session.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tacs_graphs/common/timing.h"
+
+namespace tacs {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+nlohmann::json poseJson(const Pose3& T) {
+  const Eigen::Quaterniond q(T.rotation());
+  return {
+      T.translation().x(), T.translation().y(), T.translation().z(), q.x(), q.y(), q.z(), q.w()};
+}
+
+template <class Map>
+uint32_t nextId(const Map& nodes) {
+  return nodes.empty() ? 0 : nodes.rbegin()->first + 1;
+}
+
+/// The extent of a wall along its own direction (its ends projected on the horizontal line of
+/// `ref`).
+std::pair<double, double> spanAlong(const WallNode& w, const Eigen::Vector2d& direction) {
+  const double a = w.endpoints[0].dot(direction), b = w.endpoints[1].dot(direction);
+  return {std::min(a, b), std::max(a, b)};
+}
+
+/// A session wall (moved into the prior's frame) on a prior wall's plane: normals within 10 deg,
+/// offsets within 0.3 m, their ends overlapping (0.5 m of slack).
+bool samePlane(const WallNode& prior, const WallNode& session) {
+  if (prior.is_wall != session.is_wall) return false;
+  if (prior.normal.dot(session.normal) < std::cos(10.0 * kPi / 180.0)) return false;
+  if (std::abs(prior.d - session.d) > 0.3) return false;
+  const Eigen::Vector2d direction =
+      Eigen::Vector2d(-prior.normal.y(), prior.normal.x()).normalized();
+  const auto [a0, a1] = spanAlong(prior, direction);
+  const auto [b0, b1] = spanAlong(session, direction);
+  return std::min(a1, b1) - std::max(a0, b0) > -0.5;
+}
+
+}  // namespace
+
+PriorSession::PriorSession(PriorMap prior, PriorMode mode, const RelocalizationConfig& config)
+    : prior_(std::make_unique<PriorMap>(std::move(prior))),
+      mode_(mode),
+      relocalizer_(std::make_unique<RoomRelocalizer>(*prior_, config)) {}
+
+PointCloud PriorSession::sessionMap(const SceneGraph& session, const KeyframeClouds& clouds) const {
+  return buildMapCloud(session, clouds, relocalizer_->config().cloud_voxel_m);
+}
+
+void PriorSession::tryRooms(const SceneGraph& session, const KeyframeClouds& clouds, double stamp,
+                            double distance_m, bool all) {
+  std::optional<PointCloud> map;  // built once, when a room is tried
+  for (const auto& [id, room] : session.rooms) {
+    const auto tried = tried_.find(id);
+    if (!all && tried != tried_.end() &&
+        static_cast<double>(room.free_space.size()) < 1.5 * static_cast<double>(tried->second)) {
+      continue;
+    }
+    tried_[id] = room.free_space.size();
+    if (!map) map = sessionMap(session, clouds);
+    const RelocalizationAttempt attempt = relocalizer_->tryRoom(session, *map, id);
+    ++attempts_;
+    log_.push_back({{"stamp", stamp},
+                    {"session_room", id},
+                    {"hypotheses", attempt.hypotheses},
+                    {"best_prior_room", attempt.best.prior_room},
+                    {"best_score", attempt.best.score},
+                    {"runner_up_score", attempt.runner_up_score},
+                    {"wall_points", attempt.wall_points},
+                    {"result", attempt.localized ? "localized" : attempt.reason}});
+    hypotheses_ += attempt.hypotheses;
+    rejected_ += attempt.rejected;
+    time_ms_ += attempt.time_ms;
+    if (attempt.localized) {
+      first_ = FirstLocalization{stamp, distance_m, attempt};
+      T_prior_session_ = attempt.best.T_prior_session;
+      last_refined_score_ = attempt.best.score;
+      return;
+    }
+  }
+}
+
+void PriorSession::update(const SceneGraph& session, const KeyframeClouds& clouds, double stamp,
+                          double distance_m) {
+  if (!localized()) {
+    tryRooms(session, clouds, stamp, distance_m, /*all=*/false);
+    return;
+  }
+  // Placed: a new room refines the place against the prior's map (the session's map has grown).
+  bool new_room = false;
+  for (const auto& [id, room] : session.rooms) {
+    new_room |= tried_.emplace(id, room.free_space.size()).second;
+  }
+  if (new_room) refinePlace(session, clouds);
+}
+
+void PriorSession::refinePlace(const SceneGraph& session, const KeyframeClouds& clouds) {
+  Stopwatch watch;
+  const PlaceHypothesis h = relocalizer_->refine(sessionMap(session, clouds), T_prior_session_);
+  time_ms_ += watch.elapsedMs();
+  const Pose3 step = T_prior_session_.inverse() * h.T_prior_session;
+  // A refinement that fits worse, or jumps, is not taken: the place is kept.
+  if (h.score >= relocalizer_->config().min_score &&
+      step.translation().norm() <= relocalizer_->config().distinct_distance_m &&
+      rotationAngleDeg(step) <= relocalizer_->config().distinct_angle_deg) {
+    T_prior_session_ = h.T_prior_session;
+    last_refined_score_ = h.score;
+    ++refinements_;
+  }
+}
+
+void PriorSession::finish(const SceneGraph& session, const KeyframeClouds& clouds, double stamp,
+                          double distance_m) {
+  if (!localized()) {
+    tryRooms(session, clouds, stamp, distance_m, /*all=*/false);
+  } else {
+    refinePlace(session, clouds);  // on the whole map
+  }
+  if (localized()) {
+    room_pairs_ = pairRooms(session, prior_->graph, T_prior_session_,
+                            relocalizer_->config().room_pair_overlap);
+  }
+}
+
+SceneGraph PriorSession::outputGraph(const SceneGraph& session) const {
+  if (!localized()) return session;
+  if (mode_ == PriorMode::kLocalizeOnly) return prior_->graph;
+  return mergeSceneGraphs(prior_->graph, session, T_prior_session_, room_pairs_);
+}
+
+nlohmann::json PriorSession::localizationJson() const {
+  nlohmann::json j;
+  j["status"] = localized() ? "localized" : "not_localized";
+  j["mode"] = enumName(mode_);
+  j["prior"] = prior_->dir;
+  j["attempts"] = attempts_;
+  j["hypotheses_verified"] = hypotheses_;
+  j["rejected_hypotheses"] = rejected_;
+  j["refinements"] = refinements_;
+  j["time_ms"] = time_ms_;
+  if (first_) {
+    const RelocalizationAttempt& a = first_->attempt;
+    j["first_localization"] = {{"stamp", first_->stamp},
+                               {"distance_m", first_->distance_m},
+                               {"session_room", a.session_room},
+                               {"prior_room", a.best.prior_room},
+                               {"score", a.best.score},
+                               {"runner_up_score", a.runner_up_score},
+                               {"T_prior_session", poseJson(a.best.T_prior_session)}};
+    j["T_prior_session"] = poseJson(T_prior_session_);
+    j["score"] = last_refined_score_;
+  }
+  nlohmann::json pairs = nlohmann::json::array();
+  for (const auto& [session_id, prior_id] : room_pairs_) {
+    pairs.push_back({{"session", session_id}, {"prior", prior_id}});
+  }
+  j["room_pairs"] = pairs;
+  j["attempt_log"] = log_;
+  return j;
+}
+
+SceneGraph mergeSceneGraphs(const SceneGraph& prior, const SceneGraph& session,
+                            const Pose3& T_prior_session,
+                            const std::map<uint32_t, uint32_t>& room_pairs) {
+  SceneGraph out = prior;
+  const SceneGraph moved = session.transformed(T_prior_session);
+  const uint32_t kf_base = nextId(prior.keyframes);
+  uint32_t next_wall = nextId(prior.walls), next_room = nextId(prior.rooms);
+  const auto keyframeId = [&](uint32_t id) { return kf_base + id; };
+
+  std::map<uint32_t, uint32_t> wall_ids;
+  for (const auto& [id, wall] : moved.walls) {
+    const auto same = std::find_if(prior.walls.begin(), prior.walls.end(),
+                                   [&](const auto& p) { return samePlane(p.second, wall); });
+    if (same != prior.walls.end()) {
+      wall_ids[id] = same->first;
+      continue;
+    }
+    WallNode added = wall;
+    added.id = next_wall++;
+    wall_ids[id] = added.id;
+    out.walls[added.id] = added;
+  }
+  std::map<uint32_t, uint32_t> room_ids;
+  for (const auto& [id, room] : moved.rooms) {
+    std::vector<uint32_t> walls, keyframes;
+    for (uint32_t w : room.wall_ids) walls.push_back(wall_ids.at(w));
+    for (uint32_t k : room.keyframe_ids) keyframes.push_back(keyframeId(k));
+    const auto pair = room_pairs.find(id);
+    if (pair != room_pairs.end() && out.rooms.count(pair->second)) {
+      room_ids[id] = pair->second;
+      RoomNode& known = out.rooms[pair->second];
+      known.keyframe_ids.insert(known.keyframe_ids.end(), keyframes.begin(), keyframes.end());
+      continue;
+    }
+    RoomNode added = room;
+    added.id = next_room++;
+    added.wall_ids = walls;
+    added.keyframe_ids = keyframes;
+    room_ids[id] = added.id;
+    out.rooms[added.id] = added;
+  }
+  for (const auto& [id, kf] : moved.keyframes) {
+    KeyframeNode added = kf;
+    added.id = keyframeId(id);
+    if (kf.room_id >= 0) {
+      const auto it = room_ids.find(static_cast<uint32_t>(kf.room_id));
+      added.room_id = it == room_ids.end() ? -1 : static_cast<int>(it->second);
+    }
+    out.keyframes[added.id] = added;
+  }
+  for (LoopEdge loop : moved.loops) {
+    loop.from = keyframeId(loop.from);
+    loop.to = keyframeId(loop.to);
+    out.loops.push_back(loop);
+  }
+  return out;
+}
+
+}  // namespace tacs

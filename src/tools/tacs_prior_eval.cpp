@@ -1,0 +1,132 @@
+// tacs_prior_eval: scores a session run against a prior map (tacs_offline --prior) on a simulated
+// world: the driven distance until relocalization, the session's ATE in the prior's frame with no
+// alignment of its own (the prior's frame mapped to the world by the prior run's alignment), and
+// how many re-observed rooms got their prior ids.
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tacs_graphs/common/trajectory_io.h"
+#include "tacs_graphs/eval/room_metrics.h"
+#include "tacs_graphs/eval/trajectory_metrics.h"
+#include "tacs_graphs/scene_graph/scene_graph.h"
+#include "tacs_graphs/sim/ground_truth.h"
+#include "tool_main.h"
+
+namespace {
+
+struct Options {
+  std::string prior, session;
+  bool json = false;
+};
+
+void printUsage() {
+  std::cout
+      << "Usage: tacs_prior_eval --prior PRIOR_RUN --session SESSION_RUN [--json]\n"
+         "PRIOR_RUN: a tacs_offline --world run folder; SESSION_RUN: a tacs_offline --world\n"
+         "run with --prior PRIOR_RUN. Prints the session's status, the distance driven until\n"
+         "it was placed, its keyframe ATE in the prior's frame without alignment (the prior's\n"
+         "frame mapped to the world by the prior run's SE(3) alignment) and the re-observed\n"
+         "rooms (ground-truth rooms both runs found) that got their prior ids, and the room F1\n"
+         "and wall count of the saved (merged) graph against the prior's.\n"
+         "Exit status: 0 done, 1 unreadable input, 2 bad command line.\n";
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      printUsage();
+      std::exit(0);
+    } else if (arg == "--prior" && i + 1 < argc) {
+      o.prior = argv[++i];
+    } else if (arg == "--session" && i + 1 < argc) {
+      o.session = argv[++i];
+    } else if (arg == "--json") {
+      o.json = true;
+    } else {
+      throw std::invalid_argument("unexpected argument '" + arg + "'");
+    }
+  }
+  if (o.prior.empty() || o.session.empty()) throw std::invalid_argument("needs --prior, --session");
+  return o;
+}
+
+std::vector<tacs::RoomNode> roomsIn(const tacs::SceneGraph& graph, const tacs::Pose3& T) {
+  std::vector<tacs::RoomNode> rooms;
+  for (const auto& [id, room] : graph.transformed(T).rooms) rooms.push_back(room);
+  return rooms;
+}
+
+int run(const Options& o) {
+  const std::string loc_path = o.session + "/localization.json";
+  std::ifstream loc_file(loc_path);
+  if (!loc_file) throw std::runtime_error(loc_path + ": cannot open file");
+  const nlohmann::json loc = nlohmann::json::parse(loc_file);
+  nlohmann::json out;
+  out["status"] = loc.at("status");
+  out["attempts"] = loc.at("attempts");
+  out["rejected_hypotheses"] = loc.at("rejected_hypotheses");
+  if (loc.at("status") == "localized") {
+    out["distance_m"] = loc.at("first_localization").at("distance_m");
+    // The prior's frame in the world, from the prior run's own alignment.
+    const tacs::Trajectory prior_gt = tacs::readTum(o.prior + "/ground_truth_tum.txt");
+    const tacs::Pose3 T_world_prior =
+        tacs::computeAte(tacs::readTum(o.prior + "/trajectory_tum.txt"), prior_gt, 0.05)
+            .T_gt_estimate;
+    const tacs::Trajectory session = tacs::readTum(o.session + "/trajectory_tum.txt");
+    const tacs::Trajectory session_gt = tacs::readTum(o.session + "/ground_truth_tum.txt");
+    double sum_sq = 0.0, max_err = 0.0;
+    const auto pairs = tacs::associateByTime(session, session_gt, 0.05);
+    for (const auto& [e, g] : pairs) {
+      const double err =
+          (T_world_prior * session[e].pose.translation() - session_gt[g].pose.translation()).norm();
+      sum_sq += err * err;
+      max_err = std::max(max_err, err);
+    }
+    out["ate_no_alignment_m"] = pairs.empty() ? -1.0 : std::sqrt(sum_sq / pairs.size());
+    out["ate_no_alignment_max_m"] = max_err;
+    // Rooms: each run's rooms matched to the ground truth in the world frame.
+    const auto truth = tacs::sim::readGroundTruth(o.prior + "/ground_truth.json").rooms;
+    const auto prior_rooms = tacs::evaluateRooms(
+        roomsIn(tacs::SceneGraph::load(o.prior + "/scene_graph.json"), T_world_prior), truth);
+    const auto session_rooms = tacs::evaluateRooms(
+        roomsIn(tacs::SceneGraph::load(o.session + "/session_graph.json"), T_world_prior), truth);
+    std::map<uint32_t, uint32_t> pairs_by_session;
+    for (const auto& p : loc.at("room_pairs")) pairs_by_session[p.at("session")] = p.at("prior");
+    int reobserved = 0, kept = 0;
+    for (size_t i = 0; i < truth.size(); ++i) {
+      const int a = prior_rooms.rooms[i].matched_room, b = session_rooms.rooms[i].matched_room;
+      if (a < 0 || b < 0) continue;
+      ++reobserved;
+      const auto it = pairs_by_session.find(static_cast<uint32_t>(b));
+      kept += it != pairs_by_session.end() && it->second == static_cast<uint32_t>(a);
+    }
+    out["rooms_reobserved"] = reobserved;
+    out["rooms_with_prior_id"] = kept;
+    out["session_room_f1"] = session_rooms.f1;
+    out["prior_room_f1"] = prior_rooms.f1;
+    // The saved graph: the merged one (merge mode) should have the prior's rooms, no doubles.
+    const tacs::SceneGraph saved = tacs::SceneGraph::load(o.session + "/scene_graph.json");
+    out["saved_room_f1"] = tacs::evaluateRooms(roomsIn(saved, T_world_prior), truth).f1;
+    out["saved_walls"] = saved.wallCount();
+    out["prior_walls"] = tacs::SceneGraph::load(o.prior + "/scene_graph.json").wallCount();
+  }
+  if (o.json) {
+    std::cout << out.dump() << "\n";
+  } else {
+    std::cout << std::fixed << std::setprecision(3);
+    for (const auto& [key, value] : out.items()) std::cout << key << " " << value << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return tacs::tools::toolMain("tacs_prior_eval", argc, argv, parse, run, printUsage);
+}
