@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "tacs_graphs/common/file_io.h"
 #include "tacs_graphs/ros/cloud_conversion.h"
 #include "tacs_graphs/ros/graph_messages.h"
 #include "tacs_graphs/ros/keyframe_input.h"
@@ -30,9 +31,20 @@ std::string defaultOutputDir() {
   return std::string(home ? home : "/tmp") + "/.ros/tacs_graphs";
 }
 
+/// Distance along the keyframes in id (= arrival) order.
+double drivenDistance(const SceneGraph& graph) {
+  double d = 0.0;
+  const KeyframeNode* last = nullptr;
+  for (const auto& [id, kf] : graph.keyframes) {
+    if (last) d += (kf.position - last->position).norm();
+    last = &kf;
+  }
+  return d;
+}
+
 }  // namespace
 
-BackendNode::BackendNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
+BackendNode::BackendNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : pnh_(pnh) {
   const std::string config_ns = pnh.param<std::string>("config_ns", "/tacs");
   config_ = loadPipelineConfigFromRos(nh, config_ns);
   output_dir_ = pnh.param<std::string>("output_dir", "");
@@ -62,6 +74,13 @@ BackendNode::BackendNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
       nh.subscribe("/tacs/room_observations", 100, &BackendNode::roomsCallback, this, hints);
   loop_sub_ = nh.subscribe("/tacs/loop_closures", 100, &BackendNode::loopCallback, this, hints);
   save_srv_ = pnh.advertiseService("save", &BackendNode::saveService, this);
+  prior_marker_pub_ =
+      nh.advertise<visualization_msgs::MarkerArray>("/tacs/prior_markers", 1, /*latch=*/true);
+  load_prior_srv_ = pnh.advertiseService("load_prior", &BackendNode::loadPriorService, this);
+  if (!pnh.param<std::string>("prior_map", "").empty()) {
+    std::string message;
+    loadPrior(&message);  // a bad prior is logged; the node maps on without one
+  }
   tf_timer_ = nh.createTimer(ros::Duration(1.0 / boundedParam(pnh, "tf_rate_hz", 20.0, 0.0, false)),
                              &BackendNode::publishTf, this);
   map_timer_ =
@@ -203,6 +222,54 @@ void BackendNode::update() {
   const std::string& map = config_.frames.map_frame;
   graph_pub_.publish(toSceneGraphMsg(graph, session_->wallObservationCounts(), map, latest_stamp_));
   marker_pub_.publish(sceneGraphMarkers(graph, map, latest_stamp_));
+  if (prior_) relocalize(graph);
+}
+
+void BackendNode::relocalize(const SceneGraph& graph) {
+  const bool was_placed = prior_->localized();
+  const Pose3 place = prior_->T_prior_session();
+  const size_t pairs = prior_->roomPairs().size();
+  prior_->update(graph, session_->keyframeClouds(), latest_stamp_, drivenDistance(graph));
+  if (!prior_->localized()) return;
+  if (!was_placed) {
+    const auto first = prior_->localizationJson()["first_localization"];
+    ROS_INFO_STREAM("Localized in the prior map after "
+                    << first["distance_m"].get<double>() << " m: "
+                    << (first["session_room"].is_null() ? std::string("the whole map")
+                                                        : "room " + first["session_room"].dump())
+                    << " in prior room " << first["prior_room"] << " (score "
+                    << first["score"].get<double>() << ")");
+  }
+  if (!was_placed || !place.isApprox(prior_->T_prior_session()) ||
+      pairs != prior_->roomPairs().size()) {
+    prior_marker_pub_.publish(
+        priorMapMarkers(prior_->prior().graph, prior_->roomPairs(), "prior_map", latest_stamp_));
+  }
+}
+
+bool BackendNode::loadPrior(std::string* message) {
+  const std::string dir = pnh_.param<std::string>("prior_map", "");
+  const PriorMode mode =
+      pnh_.param("localize_only", false) ? PriorMode::kLocalizeOnly : PriorMode::kMerge;
+  try {
+    if (dir.empty()) throw std::runtime_error("~prior_map is empty");
+    prior_ = std::make_unique<PriorSession>(PriorMap::load(dir), mode, config_.relocalization);
+    *message = "prior map " + dir + ": " + std::to_string(prior_->prior().graph.rooms.size()) +
+               " rooms, " + std::to_string(prior_->prior().points.size()) + " points (" +
+               enumName(mode) + ")";
+    ROS_INFO_STREAM(*message);
+    if (session_->keyframeCount() > 0) relocalize(session_->sceneGraph());
+    return true;
+  } catch (const std::exception& e) {
+    *message = std::string("prior map not loaded: ") + e.what();
+    ROS_ERROR_STREAM(*message);
+    return false;
+  }
+}
+
+bool BackendNode::loadPriorService(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  res.success = loadPrior(&res.message);
+  return true;
 }
 
 void BackendNode::publishTf(const ros::TimerEvent&) {
@@ -214,6 +281,10 @@ void BackendNode::publishTf(const ros::TimerEvent&) {
   last_tf_stamp_ = stamp;
   tf_broadcaster_.sendTransform(toTransformMsg(session_->mapToOdom(), config_.frames.map_frame,
                                                config_.frames.odom_frame, stamp));
+  if (prior_ && prior_->localized()) {
+    tf_broadcaster_.sendTransform(
+        toTransformMsg(prior_->T_prior_session(), "prior_map", config_.frames.map_frame, stamp));
+  }
 }
 
 void BackendNode::publishMap(const ros::TimerEvent&) {
@@ -226,6 +297,10 @@ void BackendNode::publishMap(const ros::TimerEvent&) {
 bool BackendNode::save(std::string* message) {
   try {
     session_->save(output_dir_, config_.map_export);
+    if (prior_) {
+      writeFileAtomically(output_dir_ + "/localization.json",
+                          prior_->localizationJson().dump(2) + "\n");
+    }
     *message =
         "saved " + std::to_string(session_->keyframeCount()) + " keyframes to " + output_dir_;
     ROS_INFO_STREAM(*message);

@@ -138,6 +138,31 @@ visualization_msgs::MarkerArray sceneGraphMarkers(const SceneGraph& graph, const
   return out;
 }
 
+visualization_msgs::MarkerArray priorMapMarkers(const SceneGraph& prior,
+                                                const std::map<uint32_t, uint32_t>& room_pairs,
+                                                const std::string& frame, double stamp) {
+  visualization_msgs::MarkerArray out = sceneGraphMarkers(prior, frame, stamp);
+  int id = 0;
+  for (const auto& [session_room, prior_room] : room_pairs) {
+    const auto it = prior.rooms.find(prior_room);
+    if (it == prior.rooms.end()) continue;
+    const Eigen::Vector3d& c = it->second.center;
+    Marker pillar = makeMarker(frame, stamp, "matched_rooms", id++, Marker::CYLINDER);
+    pillar.pose.position = point(c.x(), c.y(), 1.75);
+    pillar.scale.x = pillar.scale.y = 0.4;
+    pillar.scale.z = 3.5;
+    pillar.color = rgba(0.1f, 0.9f, 0.2f, 0.7f);
+    out.markers.push_back(pillar);
+    Marker label = makeMarker(frame, stamp, "matched_rooms", id++, Marker::TEXT_VIEW_FACING);
+    label.pose.position = point(c.x(), c.y(), 4.0);
+    label.scale.z = 0.5;
+    label.color = rgba(0.1f, 0.9f, 0.2f);
+    label.text = "prior " + std::to_string(prior_room) + " = room " + std::to_string(session_room);
+    out.markers.push_back(label);
+  }
+  return out;
+}
+
 visualization_msgs::Marker traversableGraphMarker(const TravGraph& graph_in_base,
                                                   const Pose3& T_frame_base, uint32_t keyframe_id,
                                                   const std::string& frame, double stamp) {

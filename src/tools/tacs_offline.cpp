@@ -13,7 +13,6 @@
 #include <set>
 #include <string>
 
-#include "tacs_graphs/common/file_io.h"
 #include "tacs_graphs/common/message_reason.h"
 #include "tacs_graphs/common/timing.h"
 #include "tacs_graphs/common/trajectory_io.h"
@@ -272,28 +271,16 @@ tacs::RunView priorView(const tacs::PriorSession* prior, const tacs::Pipeline& p
   return view;
 }
 
-/// localization.json, and in localize-only mode the prior's graph byte for byte with the
-/// session's own beside it.
-void writePriorFiles(const std::string& dir, const tacs::PriorSession& prior,
-                     const tacs::Pipeline& pipeline) {
-  tacs::writeFileAtomically(dir + "/localization.json", prior.localizationJson().dump(2) + "\n");
-  if (!prior.localized()) return;
-  pipeline.sceneGraph().transformed(prior.T_prior_session()).save(dir + "/session_graph.json");
-  if (prior.mode() == tacs::PriorMode::kLocalizeOnly) {
-    std::filesystem::copy_file(prior.prior().dir + "/scene_graph.json", dir + "/scene_graph.json",
-                               std::filesystem::copy_options::overwrite_existing);
-  }
-}
-
 void printLocalization(const tacs::PriorSession& prior) {
   const nlohmann::json j = prior.localizationJson();
   std::cout << "[tacs_offline] " << j["status"].get<std::string>();
   if (prior.localized()) {
     const auto& first = j["first_localization"];
+    const std::string by = first["session_room"].is_null() ? std::string("the whole map")
+                                                           : "room " + first["session_room"].dump();
     std::cout << std::fixed << std::setprecision(2) << " after "
-              << first["distance_m"].get<double>() << " m (room " << first["session_room"]
-              << " = prior room " << first["prior_room"] << ", score "
-              << first["score"].get<double>() << " against "
+              << first["distance_m"].get<double>() << " m (" << by << " in prior room "
+              << first["prior_room"] << ", score " << first["score"].get<double>() << " against "
               << first["runner_up_score"].get<double>() << "), " << prior.roomPairs().size()
               << " rooms paired";
   }
@@ -381,7 +368,7 @@ int run(const Options& o) {
       driven_m +=
           (odometry.back().pose.translation() - odometry.end()[-2].pose.translation()).norm();
     }
-    if (prior && outcome.rooms > 0) {
+    if (prior && (outcome.rooms > 0 || (outcome.keyframe && prior->wantsMapAttempt(driven_m)))) {
       prior->update(pipeline_ptr->sceneGraph(), pipeline_ptr->keyframeClouds(), scan.stamp,
                     driven_m);
     }
@@ -422,7 +409,7 @@ int run(const Options& o) {
   const auto export_ms =
       tacs::writeRunFolder(out.stagingPath(), pipeline, {o.bag.empty() ? o.world : o.bag, wall_s},
                            priorView(prior.get(), pipeline));
-  if (prior) writePriorFiles(out.stagingPath(), *prior, pipeline);
+  if (prior) prior->writeFiles(out.stagingPath(), pipeline.sceneGraph());
   source->writeGroundTruth(out.stagingPath());
   if (!reference.empty()) tacs::writeTum(out.stagingPath() + "/reference_tum.txt", reference);
   out.commit();

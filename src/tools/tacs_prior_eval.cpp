@@ -3,6 +3,7 @@
 // alignment of its own (the prior's frame mapped to the world by the prior run's alignment), and
 // how many re-observed rooms got their prior ids.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -26,12 +27,13 @@ struct Options {
 void printUsage() {
   std::cout
       << "Usage: tacs_prior_eval --prior PRIOR_RUN --session SESSION_RUN [--json]\n"
-         "PRIOR_RUN: a tacs_offline --world run folder; SESSION_RUN: a tacs_offline --world\n"
-         "run with --prior PRIOR_RUN. Prints the session's status, the distance driven until\n"
-         "it was placed, its keyframe ATE in the prior's frame without alignment (the prior's\n"
-         "frame mapped to the world by the prior run's SE(3) alignment) and the re-observed\n"
-         "rooms (ground-truth rooms both runs found) that got their prior ids, and the room F1\n"
-         "and wall count of the saved (merged) graph against the prior's.\n"
+         "PRIOR_RUN: a tacs_offline run folder with ground truth (--world) or a reference\n"
+         "(--reference); SESSION_RUN: a run of the same kind with --prior PRIOR_RUN. Prints the\n"
+         "session's status, the distance driven until it was placed, its keyframe ATE in the\n"
+         "prior's frame without alignment (the prior's frame mapped to the truth by the prior\n"
+         "run's SE(3) alignment) and, with ground-truth rooms, the re-observed rooms (found by\n"
+         "both runs) that got their prior ids, and the room F1 and wall count of the saved\n"
+         "(merged) graph against the prior's.\n"
          "Exit status: 0 done, 1 unreadable input, 2 bad command line.\n";
 }
 
@@ -62,6 +64,22 @@ std::vector<tacs::RoomNode> roomsIn(const tacs::SceneGraph& graph, const tacs::P
   return rooms;
 }
 
+/// The run's ground truth (a world's) or reference (--reference, e.g. a real sequence's).
+tacs::Trajectory truthOf(const std::string& run) {
+  const std::string gt = run + "/ground_truth_tum.txt";
+  return tacs::readTum(std::filesystem::exists(gt) ? gt : run + "/reference_tum.txt");
+}
+
+int print(const nlohmann::json& out, bool as_json) {
+  if (as_json) {
+    std::cout << out.dump() << "\n";
+  } else {
+    std::cout << std::fixed << std::setprecision(3);
+    for (const auto& [key, value] : out.items()) std::cout << key << " " << value << "\n";
+  }
+  return 0;
+}
+
 int run(const Options& o) {
   const std::string loc_path = o.session + "/localization.json";
   std::ifstream loc_file(loc_path);
@@ -74,12 +92,12 @@ int run(const Options& o) {
   if (loc.at("status") == "localized") {
     out["distance_m"] = loc.at("first_localization").at("distance_m");
     // The prior's frame in the world, from the prior run's own alignment.
-    const tacs::Trajectory prior_gt = tacs::readTum(o.prior + "/ground_truth_tum.txt");
+    const tacs::Trajectory prior_gt = truthOf(o.prior);
     const tacs::Pose3 T_world_prior =
         tacs::computeAte(tacs::readTum(o.prior + "/trajectory_tum.txt"), prior_gt, 0.05)
             .T_gt_estimate;
     const tacs::Trajectory session = tacs::readTum(o.session + "/trajectory_tum.txt");
-    const tacs::Trajectory session_gt = tacs::readTum(o.session + "/ground_truth_tum.txt");
+    const tacs::Trajectory session_gt = truthOf(o.session);
     double sum_sq = 0.0, max_err = 0.0;
     const auto pairs = tacs::associateByTime(session, session_gt, 0.05);
     for (const auto& [e, g] : pairs) {
@@ -90,6 +108,7 @@ int run(const Options& o) {
     }
     out["ate_no_alignment_m"] = pairs.empty() ? -1.0 : std::sqrt(sum_sq / pairs.size());
     out["ate_no_alignment_max_m"] = max_err;
+    if (!std::filesystem::exists(o.prior + "/ground_truth.json")) return print(out, o.json);
     // Rooms: each run's rooms matched to the ground truth in the world frame.
     const auto truth = tacs::sim::readGroundTruth(o.prior + "/ground_truth.json").rooms;
     const auto prior_rooms = tacs::evaluateRooms(
@@ -116,13 +135,7 @@ int run(const Options& o) {
     out["saved_walls"] = saved.wallCount();
     out["prior_walls"] = tacs::SceneGraph::load(o.prior + "/scene_graph.json").wallCount();
   }
-  if (o.json) {
-    std::cout << out.dump() << "\n";
-  } else {
-    std::cout << std::fixed << std::setprecision(3);
-    for (const auto& [key, value] : out.items()) std::cout << key << " " << value << "\n";
-  }
-  return 0;
+  return print(out, o.json);
 }
 
 }  // namespace

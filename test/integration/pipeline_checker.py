@@ -5,7 +5,9 @@ Simulates the world with tacs_sim into a temporary folder, plays the bag with ro
 --clock, waits until the backend has taken every keyframe, saves through /backend/save and then
 checks: keyframes along the whole path, the walls of the scene graph against the ground-truth
 wall faces (position and direction), rooms whose centres lie in distinct ground-truth rooms,
-TF map -> odom, and that every node of the pipeline is alive.
+TF map -> odom, and that every node of the pipeline is alive. With ~prior, the backend first loads
+a prior map (a tacs_offline run of the same world with other noise, through ~load_prior) and the
+session must relocalize in it: TF prior_map -> map and localization.json "localized".
 """
 import json
 import math
@@ -142,6 +144,8 @@ class PipelineTest(unittest.TestCase):
         rate = rospy.get_param('~rate', 1.0)
         player = rospy.get_param('~player', 'rosbag')
         bag = self.simulate(world)
+        if rospy.get_param('~prior', False):
+            self.load_prior(world)
         if player == 'play_bag':  # paced by the odometry: every scan acknowledged, none dropped
             command = ['rosrun', 'tacs_graphs', 'play_bag', bag, '--topic', '/velodyne_points']
         else:
@@ -175,6 +179,25 @@ class PipelineTest(unittest.TestCase):
         self.check_rooms(saved, gt, truth)
         if rospy.get_param('~compare_offline', False):
             self.check_same_as_offline(saved, bag)
+        if rospy.get_param('~prior', False):
+            self.assertIn(('prior_map', 'map'), self.tf, 'no TF prior_map -> map')
+            with open(os.path.join(output_dir, 'localization.json')) as f:
+                loc = json.load(f)
+            self.assertEqual(loc['status'], 'localized', json.dumps(loc))
+            self.assertTrue(loc['room_pairs'], 'no room re-observed')
+
+    def load_prior(self, world):
+        """A first session of the world (other noise) as the backend's prior map."""
+        prior = os.path.join(self.tmp, 'prior')
+        run = subprocess.run(['rosrun', 'tacs_graphs', 'tacs_offline', '--world', world, '--seed',
+                              '1', '--out', prior, '--quiet'],
+                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=240,
+                             universal_newlines=True)
+        self.assertEqual(run.returncode, 0, 'tacs_offline failed:\n' + run.stdout)
+        rospy.set_param('/backend/prior_map', prior)
+        rospy.wait_for_service('/backend/load_prior', timeout=10.0)
+        reply = rospy.ServiceProxy('/backend/load_prior', Trigger)()
+        self.assertTrue(reply.success, reply.message)
 
     def check_same_as_offline(self, saved, bag):
         """tacs_offline on the same bag composes the same stage sessions in one process: with

@@ -250,5 +250,21 @@ TEST(SceneGraphMarkers, DrawsEveryLayer) {
   }
 }
 
+TEST(SceneGraphMarkers, APriorMapShowsItsReobservedRoomsInItsFrame) {
+  const SceneGraph prior = makeGraph();
+  const uint32_t prior_room = prior.rooms.begin()->first;
+  const auto markers = priorMapMarkers(prior, {{42, prior_room}, {43, 999}}, "prior_map", 1.0);
+  int pillars = 0;
+  std::string label;
+  for (const auto& m : markers.markers) {
+    EXPECT_EQ(m.header.frame_id, "prior_map");
+    if (m.ns != "matched_rooms") continue;
+    if (m.type == visualization_msgs::Marker::CYLINDER) ++pillars;
+    if (m.type == visualization_msgs::Marker::TEXT_VIEW_FACING) label = m.text;
+  }
+  EXPECT_EQ(pillars, 1);  // room 999 is no prior room: nothing drawn for it
+  EXPECT_EQ(label, "prior " + std::to_string(prior_room) + " = room 42");
+}
+
 }  // namespace
 }  // namespace tacs

@@ -1,8 +1,8 @@
+#include "tacs_graphs/ros/message_conversion.h"
+
 #include <gtest/gtest.h>
 
 #include <boost/array.hpp>
-
-#include "tacs_graphs/ros/message_conversion.h"
 
 namespace tacs {
 namespace {

@@ -42,7 +42,8 @@ class PriorSession {
   PriorSession(PriorMap prior, PriorMode mode, const RelocalizationConfig& config);
 
   /// After a scan: tries the rooms not tried yet (or grown by half since their last try) while
-  /// unplaced, refines the place when a new room appears once placed. `distance_m`: driven so far.
+  /// unplaced, and the whole map after relocalization.retry_distance_m without an attempt;
+  /// refines the place when a new room appears once placed. `distance_m`: driven so far.
   void update(const SceneGraph& session, const KeyframeClouds& clouds, double stamp,
               double distance_m);
   /// At the end of the run: one more try (or refinement) and the room pairs.
@@ -50,9 +51,11 @@ class PriorSession {
               double distance_m);
 
   bool localized() const { return first_.has_value(); }
+  /// Unplaced, and far enough since the last attempt for a whole-map one: update() would try.
+  bool wantsMapAttempt(double distance_m) const;
   /// The session's map frame in the prior's (identity while unplaced).
   const Pose3& T_prior_session() const { return T_prior_session_; }
-  /// Session room id -> prior room id (after finish()).
+  /// Session room id -> prior room id (once placed; final after finish()).
   const std::map<uint32_t, uint32_t>& roomPairs() const { return room_pairs_; }
   PriorMode mode() const { return mode_; }
   const PriorMap& prior() const { return relocalizer_->prior(); }
@@ -64,11 +67,19 @@ class PriorSession {
   /// (stamp, driven distance, rooms, scores), T_prior_session, room_pairs, attempts (and each
   /// one's rooms, scores and result in attempt_log), hypotheses verified and rejected.
   nlohmann::json localizationJson() const;
+  /// Writes DIR/localization.json and, once placed, DIR/session_graph.json (the session's graph
+  /// in the prior's frame) and DIR/scene_graph.json: the prior's file byte for byte
+  /// (localize-only) or the merged graph. Throws std::runtime_error naming the file.
+  void writeFiles(const std::string& dir, const SceneGraph& session) const;
 
  private:
   PointCloud sessionMap(const SceneGraph& session, const KeyframeClouds& clouds) const;
   void tryRooms(const SceneGraph& session, const KeyframeClouds& clouds, double stamp,
-                double distance_m, bool all);
+                double distance_m);
+  void tryMap(const SceneGraph& session, const KeyframeClouds& clouds, double stamp,
+              double distance_m);
+  /// Counts an attempt into localization.json; true when it placed the session.
+  bool book(const RelocalizationAttempt& attempt, double stamp, double distance_m);
   /// Registers the session's whole map to the prior's from the current place; kept when it fits.
   void refinePlace(const SceneGraph& session, const KeyframeClouds& clouds);
 
@@ -79,6 +90,7 @@ class PriorSession {
   std::optional<FirstLocalization> first_;
   Pose3 T_prior_session_ = Pose3::Identity();
   double last_refined_score_ = 0.0;
+  double last_attempt_m_ = 0.0;  // driven distance at the last attempt
   std::map<uint32_t, uint32_t> room_pairs_;
   nlohmann::json log_ = nlohmann::json::array();  // one entry per attempt
   int attempts_ = 0, hypotheses_ = 0, rejected_ = 0, refinements_ = 0;

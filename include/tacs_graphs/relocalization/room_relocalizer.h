@@ -5,8 +5,9 @@
 // hypotheses does not depend on the cut: the session's wall points slid over the prior's from
 // above, at the four yaws that align the maps' wall axes. Each hypothesis is verified as CoSG-LCD
 // verifies a loop (paper Sec. III-D): GICP of the session's map against the prior's from the
-// hypothesis, wide gate to narrow, scored by the share of the session's wall-like points that land
-// on the prior's surfaces (floors and ceilings fit under any planar shift, so they are not scored).
+// hypothesis, wide gate to narrow, scored by the share of the session's wall-like points within the
+// prior's reach that land on its surfaces (floors and ceilings fit under any planar shift, so they
+// are not scored).
 // The best hypothesis places the session when it scores min_score and every distinct hypothesis
 // leaves clearly more points off the prior's surfaces (min_misfit_ratio, min_extra_misfits): a
 // symmetric room, or two rooms alike, wait for the next room, whose map then holds more of the
@@ -15,6 +16,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,7 +34,10 @@ struct RelocalizationConfig {
   int max_session_points = 40000;        // the session's map is thinned to this many points
   double coarse_gate_m = 1.5;            // [m] GICP correspondence gate of the first stage
   double fine_gate_m = 0.3;              // [m] ... of the last stage (the middle one halfway)
-  double fit_distance_m = 0.15;          // [m] a wall point this close to a prior point fits
+  double fit_distance_m = 0.1;           // [m] a wall point this close to the plane of
+  double fit_radius_m = 0.5;             // [m] ... a prior point this near fits
+  double overlap_radius_m = 1.0;         // [m] farther than this from any: not scored
+  double min_overlap = 0.5;              // [-] the scored points count as at least this share
   double max_normal_z = 0.5;             // [-] |normal z| above this: horizontal, not scored
   double min_score = 0.85;               // [-] share of wall points that fit, to place the session
   // ... and every distinct place must leave min_misfit_ratio times as many wall points off the
@@ -48,6 +53,8 @@ struct RelocalizationConfig {
   double room_pair_overlap = 0.5;    // [-] share of a room's free space inside a prior room
   double search_cell_m = 0.5;        // [m] cell of the translation search over wall points
   int search_peaks_per_yaw = 3;      // [-] best shifts of each of the four yaws verified
+  double retry_distance_m = 10.0;    // [m] unplaced and no room tried for this long: whole-map
+                                     // attempt (a session that segments no room); 0: rooms only
 
   template <class V>
   void visit(V& v) {
@@ -58,6 +65,9 @@ struct RelocalizationConfig {
     v("coarse_gate_m", coarse_gate_m);
     v("fine_gate_m", fine_gate_m);
     v("fit_distance_m", fit_distance_m);
+    v("fit_radius_m", fit_radius_m);
+    v("overlap_radius_m", overlap_radius_m);
+    v("min_overlap", min_overlap);
     v("max_normal_z", max_normal_z);
     v("min_score", min_score);
     v("min_misfit_ratio", min_misfit_ratio);
@@ -69,6 +79,7 @@ struct RelocalizationConfig {
     v("room_pair_overlap", room_pair_overlap);
     v("search_cell_m", search_cell_m);
     v("search_peaks_per_yaw", search_peaks_per_yaw);
+    v("retry_distance_m", retry_distance_m);
   }
   void validate() const;
 };
@@ -91,7 +102,7 @@ struct PlaceHypothesis {
 };
 
 struct RelocalizationAttempt {
-  uint32_t session_room = 0;
+  std::optional<uint32_t> session_room;  // none: a whole-map attempt (tryMap)
   bool localized = false;
   PlaceHypothesis best;
   double runner_up_score = 0.0;  // best hypothesis at a distinct place (0: none)
@@ -112,6 +123,11 @@ class RoomRelocalizer {
   /// own map frame.
   RelocalizationAttempt tryRoom(const SceneGraph& session, const PointCloud& session_points,
                                 uint32_t room_id) const;
+  /// Tries to place the session without a room (a session that has segmented none yet): the
+  /// wall search's hypotheses only. `where`: a session map point (the robot) whose prior room
+  /// names the place.
+  RelocalizationAttempt tryMap(const PointCloud& session_points,
+                               const Eigen::Vector3d& where) const;
   /// Registers the session's map to the prior's from a known place (middle and narrow gates).
   PlaceHypothesis refine(const PointCloud& session_points, const Pose3& T_prior_session) const;
 
@@ -125,6 +141,13 @@ class RoomRelocalizer {
   /// Places of the session's map found by sliding its wall points over the prior's, at the four
   /// yaws that align the two maps' wall axes.
   std::vector<Pose3> searchTranslations(const SessionCloud& session) const;
+  std::vector<double> gates() const;  // GICP correspondence gates of a hypothesis, wide to narrow
+  /// Prior rooms shaped as the session's room, at the yaws that keep its extents.
+  std::vector<PlaceHypothesis> shapeHypotheses(const SessionCloud& cloud,
+                                               const RoomShape& shape) const;
+  /// Adds the wall search's hypotheses, verifies them all and accepts the best or says why not.
+  RelocalizationAttempt decide(const SessionCloud& cloud, std::vector<PlaceHypothesis> verified,
+                               const Eigen::Vector3d& anchor, RelocalizationAttempt attempt) const;
   /// The prior room whose free space lies nearest to a map point.
   uint32_t priorRoomAt(const Eigen::Vector3d& p) const;
   /// GICP from `guess` through the given gates, then the score at the result.

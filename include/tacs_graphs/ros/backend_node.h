@@ -17,6 +17,12 @@
 //                                   give output_dir/journal and respawn the node
 //   ~replay_journal (auto)          replay the journal at start: auto (after a respawn), true,
 //   false
+//   ~prior_map ("")                 a run folder to relocalize in (docs/DESIGN.md "Prior maps");
+//   ~localize_only (false)          its mode; service ~load_prior (re)reads both parameters.
+//                                   Once placed: TF prior_map -> map, /tacs/prior_markers (the
+//                                   prior's graph, its re-observed rooms as green pillars), and
+//                                   ~save adds localization.json (the saved map stays in the
+//                                   session's own frame; tacs_offline --prior writes the merge).
 // After a replay it publishes a latched tacs_graphs/Resync on /tacs/resync: the odometry resends
 // the keyframes the backend missed while it was down, room_segmentation and loop_closure send
 // their rooms and loops again (duplicates are recognised and dropped).
@@ -37,6 +43,7 @@
 #include "tacs_graphs/backend/map_export.h"
 #include "tacs_graphs/pipeline/backend_session.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
+#include "tacs_graphs/relocalization/prior_session.h"
 #include "tacs_graphs/ros/message_journal.h"
 #include "tacs_graphs/ros/warn_once.h"
 
@@ -66,6 +73,11 @@ class BackendNode {
   /// Optimises if due and publishes the scene graph and markers.
   void update();
   bool save(std::string* message);
+  /// Reads ~prior_map and ~localize_only and loads the prior; false (and why) when it cannot.
+  bool loadPrior(std::string* message);
+  bool loadPriorService(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  /// Hands the graph to the prior session; publishes the prior's markers when its place moved.
+  void relocalize(const SceneGraph& graph);
   /// Rebuilds the session from the crash journal and asks the others to resend what it lacks.
   void replayJournal();
 
@@ -85,6 +97,10 @@ class BackendNode {
   ros::ServiceServer save_srv_;
   ros::Timer tf_timer_, map_timer_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
+  ros::NodeHandle pnh_;
+  std::unique_ptr<PriorSession> prior_;
+  ros::Publisher prior_marker_pub_;
+  ros::ServiceServer load_prior_srv_;
   WarnOnce warnings_;
 };
 

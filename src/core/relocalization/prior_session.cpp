@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
+#include "tacs_graphs/common/file_io.h"
 #include "tacs_graphs/common/timing.h"
 
 namespace tacs {
@@ -15,6 +17,10 @@ nlohmann::json poseJson(const Pose3& T) {
   const Eigen::Quaterniond q(T.rotation());
   return {
       T.translation().x(), T.translation().y(), T.translation().z(), q.x(), q.y(), q.z(), q.w()};
+}
+
+nlohmann::json roomJson(const std::optional<uint32_t>& room) {
+  return room ? nlohmann::json(*room) : nlohmann::json(nullptr);
 }
 
 template <class Map>
@@ -54,50 +60,72 @@ PointCloud PriorSession::sessionMap(const SceneGraph& session, const KeyframeClo
 }
 
 void PriorSession::tryRooms(const SceneGraph& session, const KeyframeClouds& clouds, double stamp,
-                            double distance_m, bool all) {
+                            double distance_m) {
   std::optional<PointCloud> map;  // built once, when a room is tried
   for (const auto& [id, room] : session.rooms) {
     const auto tried = tried_.find(id);
-    if (!all && tried != tried_.end() &&
+    if (tried != tried_.end() &&
         static_cast<double>(room.free_space.size()) < 1.5 * static_cast<double>(tried->second)) {
       continue;
     }
     tried_[id] = room.free_space.size();
     if (!map) map = sessionMap(session, clouds);
-    const RelocalizationAttempt attempt = relocalizer_->tryRoom(session, *map, id);
-    ++attempts_;
-    log_.push_back({{"stamp", stamp},
-                    {"session_room", id},
-                    {"hypotheses", attempt.hypotheses},
-                    {"best_prior_room", attempt.best.prior_room},
-                    {"best_score", attempt.best.score},
-                    {"runner_up_score", attempt.runner_up_score},
-                    {"wall_points", attempt.wall_points},
-                    {"result", attempt.localized ? "localized" : attempt.reason}});
-    hypotheses_ += attempt.hypotheses;
-    rejected_ += attempt.rejected;
-    time_ms_ += attempt.time_ms;
-    if (attempt.localized) {
-      first_ = FirstLocalization{stamp, distance_m, attempt};
-      T_prior_session_ = attempt.best.T_prior_session;
-      last_refined_score_ = attempt.best.score;
-      return;
-    }
+    if (book(relocalizer_->tryRoom(session, *map, id), stamp, distance_m)) return;
   }
+}
+
+bool PriorSession::book(const RelocalizationAttempt& attempt, double stamp, double distance_m) {
+  last_attempt_m_ = distance_m;
+  ++attempts_;
+  log_.push_back({{"stamp", stamp},
+                  {"distance_m", distance_m},
+                  {"session_room", roomJson(attempt.session_room)},
+                  {"hypotheses", attempt.hypotheses},
+                  {"best_prior_room", attempt.best.prior_room},
+                  {"best_score", attempt.best.score},
+                  {"best_T_prior_session", poseJson(attempt.best.T_prior_session)},
+                  {"runner_up_score", attempt.runner_up_score},
+                  {"wall_points", attempt.wall_points},
+                  {"result", attempt.localized ? "localized" : attempt.reason}});
+  hypotheses_ += attempt.hypotheses;
+  rejected_ += attempt.rejected;
+  time_ms_ += attempt.time_ms;
+  if (!attempt.localized) return false;
+  first_ = FirstLocalization{stamp, distance_m, attempt};
+  T_prior_session_ = attempt.best.T_prior_session;
+  last_refined_score_ = attempt.best.score;
+  return true;
+}
+
+void PriorSession::tryMap(const SceneGraph& session, const KeyframeClouds& clouds, double stamp,
+                          double distance_m) {
+  if (session.keyframes.empty()) return;
+  const Eigen::Vector3d where = session.keyframes.rbegin()->second.position;  // the newest
+  book(relocalizer_->tryMap(sessionMap(session, clouds), where), stamp, distance_m);
+}
+
+bool PriorSession::wantsMapAttempt(double distance_m) const {
+  const double retry = relocalizer_->config().retry_distance_m;
+  return !localized() && retry > 0.0 && distance_m - last_attempt_m_ >= retry;
 }
 
 void PriorSession::update(const SceneGraph& session, const KeyframeClouds& clouds, double stamp,
                           double distance_m) {
   if (!localized()) {
-    tryRooms(session, clouds, stamp, distance_m, /*all=*/false);
-    return;
+    tryRooms(session, clouds, stamp, distance_m);
+    if (wantsMapAttempt(distance_m)) tryMap(session, clouds, stamp, distance_m);
+  } else {
+    // Placed: a new room refines the place against the prior's map (the session's map grew).
+    bool new_room = false;
+    for (const auto& [id, room] : session.rooms) {
+      new_room |= tried_.emplace(id, room.free_space.size()).second;
+    }
+    if (new_room) refinePlace(session, clouds);
   }
-  // Placed: a new room refines the place against the prior's map (the session's map has grown).
-  bool new_room = false;
-  for (const auto& [id, room] : session.rooms) {
-    new_room |= tried_.emplace(id, room.free_space.size()).second;
+  if (localized()) {
+    room_pairs_ = pairRooms(session, prior_->graph, T_prior_session_,
+                            relocalizer_->config().room_pair_overlap);
   }
-  if (new_room) refinePlace(session, clouds);
 }
 
 void PriorSession::refinePlace(const SceneGraph& session, const KeyframeClouds& clouds) {
@@ -118,7 +146,11 @@ void PriorSession::refinePlace(const SceneGraph& session, const KeyframeClouds& 
 void PriorSession::finish(const SceneGraph& session, const KeyframeClouds& clouds, double stamp,
                           double distance_m) {
   if (!localized()) {
-    tryRooms(session, clouds, stamp, distance_m, /*all=*/false);
+    tryRooms(session, clouds, stamp, distance_m);
+    // A session that never tried a room still gets one whole-map attempt.
+    if (!localized() && (wantsMapAttempt(distance_m) || attempts_ == 0)) {
+      tryMap(session, clouds, stamp, distance_m);
+    }
   } else {
     refinePlace(session, clouds);  // on the whole map
   }
@@ -148,7 +180,7 @@ nlohmann::json PriorSession::localizationJson() const {
     const RelocalizationAttempt& a = first_->attempt;
     j["first_localization"] = {{"stamp", first_->stamp},
                                {"distance_m", first_->distance_m},
-                               {"session_room", a.session_room},
+                               {"session_room", roomJson(a.session_room)},
                                {"prior_room", a.best.prior_room},
                                {"score", a.best.score},
                                {"runner_up_score", a.runner_up_score},
@@ -163,6 +195,21 @@ nlohmann::json PriorSession::localizationJson() const {
   j["room_pairs"] = pairs;
   j["attempt_log"] = log_;
   return j;
+}
+
+void PriorSession::writeFiles(const std::string& dir, const SceneGraph& session) const {
+  writeFileAtomically(dir + "/localization.json", localizationJson().dump(2) + "\n");
+  if (!localized()) return;
+  session.transformed(T_prior_session_).save(dir + "/session_graph.json");
+  if (mode_ == PriorMode::kLocalizeOnly) {
+    std::error_code ec;
+    std::filesystem::copy_file(prior_->dir + "/scene_graph.json", dir + "/scene_graph.json",
+                               std::filesystem::copy_options::overwrite_existing, ec);
+    if (ec)
+      throw std::runtime_error(dir + "/scene_graph.json: cannot copy the prior's: " + ec.message());
+  } else {
+    outputGraph(session).save(dir + "/scene_graph.json");
+  }
 }
 
 SceneGraph mergeSceneGraphs(const SceneGraph& prior, const SceneGraph& session,

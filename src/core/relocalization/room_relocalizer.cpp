@@ -121,6 +121,12 @@ void RelocalizationConfig::validate() const {
   requireConfig(coarse_gate_m >= fine_gate_m, "relocalization.coarse_gate_m",
                 "must be >= relocalization.fine_gate_m");
   requireConfig(fit_distance_m > 0.0, "relocalization.fit_distance_m", "must be > 0");
+  requireConfig(fit_radius_m >= fit_distance_m, "relocalization.fit_radius_m",
+                "must be >= relocalization.fit_distance_m");
+  requireConfig(overlap_radius_m >= fit_radius_m, "relocalization.overlap_radius_m",
+                "must be >= relocalization.fit_radius_m");
+  requireConfig(min_overlap > 0.0 && min_overlap <= 1.0, "relocalization.min_overlap",
+                "must be in (0, 1]");
   requireConfig(max_normal_z > 0.0 && max_normal_z <= 1.0, "relocalization.max_normal_z",
                 "must be in (0, 1]");
   requireConfig(min_score > 0.0 && min_score <= 1.0, "relocalization.min_score",
@@ -136,6 +142,7 @@ void RelocalizationConfig::validate() const {
                 "relocalization.room_pair_overlap", "must be in (0, 1]");
   requireConfig(search_cell_m > 0.0, "relocalization.search_cell_m", "must be > 0");
   requireConfig(search_peaks_per_yaw >= 0, "relocalization.search_peaks_per_yaw", "must be >= 0");
+  requireConfig(retry_distance_m >= 0.0, "relocalization.retry_distance_m", "must be >= 0");
 }
 
 RoomShape roomShape(const RoomNode& room, const SceneGraph& graph) {
@@ -278,14 +285,35 @@ RoomRelocalizer::SessionCloud RoomRelocalizer::prepare(const PointCloud& session
 }
 
 double RoomRelocalizer::score(const SessionCloud& session, const Pose3& T) const {
+  // Session points where the prior has no point within overlap_radius_m lie where the prior
+  // never looked (a part of the building the first session did not visit): they neither fit
+  // nor misfit. The overlap counts as at least min_overlap of the points, so that a place that
+  // puts most of the session outside the prior is not judged by a few points.
+  // A point fits when it lies on the plane of its nearest prior point (within fit_distance_m of
+  // it, that point no farther than fit_radius_m): maps voxelised at 0.2 m leave gaps of that
+  // size between a surface's points.
   if (session.wall_points.empty()) return 0.0;
-  const double max_sq = config_.fit_distance_m * config_.fit_distance_m;
-  size_t fit = 0;
+  const double fit_sq = config_.fit_distance_m * config_.fit_distance_m;
+  const double radius_sq = config_.fit_radius_m * config_.fit_radius_m;
+  const double overlap_sq = config_.overlap_radius_m * config_.overlap_radius_m;
+  size_t fit = 0, overlap = 0;
   for (uint32_t i : session.wall_points) {
+    const Eigen::Vector3d p = T * session.cloud->points()[i];
     double d2 = 0.0;
-    if (prior_cloud_->nearest(T * session.cloud->points()[i], max_sq, &d2) >= 0) ++fit;
+    const int64_t j = prior_cloud_->nearest(p, overlap_sq, &d2);
+    if (j < 0) continue;
+    ++overlap;
+    if (d2 > radius_sq) continue;
+    // The prior covariance is I - (1 - f) n n^T: (I - C) / (1 - f) = n n^T.
+    const Eigen::Vector3d d = p - prior_cloud_->points()[j];
+    const Eigen::Matrix3d& C = prior_cloud_->covariances()[j];
+    const double plane_sq = d.dot(d - C * d) / (1.0 - kGicpPlaneVariance);
+    if (plane_sq <= fit_sq) ++fit;
   }
-  return static_cast<double>(fit) / session.wall_points.size();
+  const double counted =
+      std::max(static_cast<double>(overlap),
+               config_.min_overlap * static_cast<double>(session.wall_points.size()));
+  return static_cast<double>(fit) / counted;
 }
 
 PlaceHypothesis RoomRelocalizer::verify(const SessionCloud& session, const Pose3& guess,
@@ -310,32 +338,17 @@ bool RoomRelocalizer::distinct(const Pose3& a, const Pose3& b) const {
          rotationAngleDeg(d) > config_.distinct_angle_deg;
 }
 
-RelocalizationAttempt RoomRelocalizer::tryRoom(const SceneGraph& session,
-                                               const PointCloud& session_points,
-                                               uint32_t room_id) const {
-  Stopwatch watch;
-  RelocalizationAttempt attempt;
-  attempt.session_room = room_id;
-  const auto finish = [&](const std::string& reason) {
-    attempt.reason = reason;
-    attempt.time_ms = watch.elapsedMs();
-    return attempt;
-  };
-  const auto room = session.rooms.find(room_id);
-  if (room == session.rooms.end()) return finish("no such room in the session");
-  const RoomShape shape = roomShape(room->second, session);
-  if (!shape.ok) return finish("the room has no free space");
-  const SessionCloud cloud = prepare(session_points);
-  if (cloud.wall_points.size() < static_cast<size_t>(config_.min_wall_points)) {
-    return finish("the session's map holds too few wall points yet");
-  }
+std::vector<double> RoomRelocalizer::gates() const {
+  return {config_.coarse_gate_m, 0.5 * (config_.coarse_gate_m + config_.fine_gate_m),
+          config_.fine_gate_m};
+}
+
+std::vector<PlaceHypothesis> RoomRelocalizer::shapeHypotheses(const SessionCloud& cloud,
+                                                              const RoomShape& shape) const {
   const auto fits = [&](double a, double b) {
     return std::abs(a - b) <=
            std::max(config_.extent_tolerance_m, config_.extent_tolerance_ratio * std::max(a, b));
   };
-  const std::vector<double> gates = {config_.coarse_gate_m,
-                                     0.5 * (config_.coarse_gate_m + config_.fine_gate_m),
-                                     config_.fine_gate_m};
   std::vector<PlaceHypothesis> verified;
   for (const auto& [prior_id, prior_shape] : prior_shapes_) {
     for (int k = 0; k < 4; ++k) {
@@ -347,21 +360,32 @@ RelocalizationAttempt RoomRelocalizer::tryRoom(const SceneGraph& session,
       }
       const double yaw = prior_shape.yaw - shape.yaw + k * kQuarter;
       const Eigen::Vector2d t = prior_shape.center - Eigen::Rotation2Dd(yaw) * shape.center;
-      PlaceHypothesis h = verify(cloud, planarPose(t.x(), t.y(), yaw), gates);
+      PlaceHypothesis h = verify(cloud, planarPose(t.x(), t.y(), yaw), gates());
       h.prior_room = prior_id;
       verified.push_back(h);
     }
   }
+  return verified;
+}
+
+RelocalizationAttempt RoomRelocalizer::decide(const SessionCloud& cloud,
+                                              std::vector<PlaceHypothesis> verified,
+                                              const Eigen::Vector3d& anchor,
+                                              RelocalizationAttempt attempt) const {
   // Rooms are cut where the robot happened to enter and leave them (a corridor ring is split
   // elsewhere by each session), so the shape hypotheses may all miss: the translation search
   // adds places found from the whole map's walls.
   for (const Pose3& guess : searchTranslations(cloud)) {
-    PlaceHypothesis h = verify(cloud, guess, gates);
-    h.prior_room = priorRoomAt(h.T_prior_session * room->second.center);
+    PlaceHypothesis h = verify(cloud, guess, gates());
+    h.prior_room = priorRoomAt(h.T_prior_session * anchor);
     verified.push_back(h);
   }
   attempt.hypotheses = static_cast<int>(verified.size());
-  if (verified.empty()) return finish("no place in the prior fits the session's walls");
+  attempt.wall_points = cloud.wall_points.size();
+  if (verified.empty()) {
+    attempt.reason = "no place in the prior fits the session's walls";
+    return attempt;
+  }
   std::sort(verified.begin(), verified.end(),
             [](const PlaceHypothesis& a, const PlaceHypothesis& b) { return a.score > b.score; });
   attempt.best = verified.front();
@@ -371,7 +395,6 @@ RelocalizationAttempt RoomRelocalizer::tryRoom(const SceneGraph& session,
       break;
     }
   }
-  attempt.wall_points = cloud.wall_points.size();
   const double best_misfit = std::max(1.0 - attempt.best.score, config_.misfit_floor);
   const double runner_up_misfit = 1.0 - attempt.runner_up_score;
   const double extra_misfits =
@@ -380,9 +403,50 @@ RelocalizationAttempt RoomRelocalizer::tryRoom(const SceneGraph& session,
                       runner_up_misfit >= config_.min_misfit_ratio * best_misfit &&
                       extra_misfits >= config_.min_extra_misfits;
   attempt.rejected = attempt.hypotheses - (attempt.localized ? 1 : 0);
-  if (attempt.localized) return finish("");
-  return finish(attempt.best.score < config_.min_score ? "no hypothesis fits the prior's map"
-                                                       : "two distinct places fit alike");
+  if (!attempt.localized) {
+    attempt.reason = attempt.best.score < config_.min_score ? "no hypothesis fits the prior's map"
+                                                            : "two distinct places fit alike";
+  }
+  return attempt;
+}
+
+RelocalizationAttempt RoomRelocalizer::tryRoom(const SceneGraph& session,
+                                               const PointCloud& session_points,
+                                               uint32_t room_id) const {
+  Stopwatch watch;
+  RelocalizationAttempt attempt;
+  attempt.session_room = room_id;
+  const auto room = session.rooms.find(room_id);
+  const RoomShape shape =
+      room == session.rooms.end() ? RoomShape() : roomShape(room->second, session);
+  if (room == session.rooms.end()) {
+    attempt.reason = "no such room in the session";
+  } else if (!shape.ok) {
+    attempt.reason = "the room has no free space";
+  } else {
+    const SessionCloud cloud = prepare(session_points);
+    if (cloud.wall_points.size() < static_cast<size_t>(config_.min_wall_points)) {
+      attempt.reason = "the session's map holds too few wall points yet";
+    } else {
+      attempt = decide(cloud, shapeHypotheses(cloud, shape), room->second.center, attempt);
+    }
+  }
+  attempt.time_ms = watch.elapsedMs();
+  return attempt;
+}
+
+RelocalizationAttempt RoomRelocalizer::tryMap(const PointCloud& session_points,
+                                              const Eigen::Vector3d& where) const {
+  Stopwatch watch;
+  RelocalizationAttempt attempt;
+  const SessionCloud cloud = prepare(session_points);
+  if (cloud.wall_points.size() < static_cast<size_t>(config_.min_wall_points)) {
+    attempt.reason = "the session's map holds too few wall points yet";
+  } else {
+    attempt = decide(cloud, {}, where, attempt);
+  }
+  attempt.time_ms = watch.elapsedMs();
+  return attempt;
 }
 
 PlaceHypothesis RoomRelocalizer::refine(const PointCloud& session_points,
