@@ -518,7 +518,53 @@ def legged_office():
     b.write()
 
 
+def warehouse():
+    """Open plan (issue: rooms in open-plan interiors): a 40 x 24 m hall under an 8 m roof with
+    five rows of see-through 2.5 m racks (2.5 m aisles), a loading area with pallets and two
+    walled offices (3 m walls and ceiling) in a corner. Ground truth: the hall is one room, each
+    office one room."""
+    b = Builder("warehouse", height=8.0, thickness=0.2)
+    t = b.t
+    h = t / 2
+    b.rect(0, 0, 40, 24)
+    b.floor_rect(0, 0, 40, 24)
+    # Offices A (x 0..5) and B (x 5..10), y 0..4: 3 m walls, 1 m doors on their north side.
+    oh = 3.0
+    for x0, x1, door in ((0, 5, 2.0), (5, 10, 7.0)):
+        b.wall((x0 + h if x0 == 0 else x0, 4), (door, 4), z_max=oh)
+        b.wall((door + 1.0, 4), (x1, 4), z_max=oh)
+        b.ceilings.append({"polygon": [[x0, 0], [x1, 0], [x1, 4], [x0, 4]], "z": oh})
+        b.polygon_room("office_" + ("a" if x0 == 0 else "b"), "room",
+                       [[x0 + h, h], [x1 - h, h], [x1 - h, 4 - h], [x0 + h, 4 - h]])
+    b.wall((5, h), (5, 4), z_max=oh)
+    b.wall((10, h), (10, 4 + h), z_max=oh)
+    b.polygon_room("hall", "room", [[h, 4 + h], [10 + h, 4 + h], [10 + h, h], [40 - h, h],
+                                    [40 - h, 24 - h], [h, 24 - h]])
+    # Racks along x from 14 to 36, 1 m deep: uprights every 2.75 m, four boards, goods on some.
+    rng = random.Random(34)
+    for yc in (6.0, 9.5, 13.0, 16.5, 20.0):
+        for k in range(9):
+            b.box(14.0 + 2.75 * k, yc, 0.0, 0.1, 1.0, 2.5)
+        for z in (0.1, 0.9, 1.7, 2.45):
+            b.box(25.0, yc, z, 22.0, 1.0, 0.05)
+        for k in range(8):
+            for z in (0.15, 0.95, 1.75):
+                if rng.random() < 0.55:
+                    w = rng.uniform(0.8, 2.4)
+                    x = 14.0 + 2.75 * k + 0.15 + rng.uniform(0.0, 2.45 - w)
+                    b.box(x + w / 2, yc, z, w, rng.uniform(0.6, 0.95), rng.uniform(0.3, 0.7))
+    # Loading area (x 0..12, y 9..21): pallets, a lane at x 5..7 kept clear.
+    for _ in range(22):
+        x = rng.choice([rng.uniform(1.0, 4.3), rng.uniform(7.7, 11.0)])
+        y = rng.uniform(9.5, 20.5)
+        b.box(x, y, 0.0, 1.2, 1.0, rng.choice([0.15, 0.8, 1.2, 1.6]))
+    b.path([[2.5, 2.0], [2.5, 5.0], [12.5, 7.75], [37.5, 7.75], [37.5, 14.75], [12.5, 14.75],
+            [12.5, 18.25], [37.5, 18.25], [38.0, 22.3], [6.0, 22.3], [6.0, 6.0], [7.5, 5.0],
+            [7.5, 2.0]], speed=1.0, corner=0.6)
+    b.write()
+
+
 if __name__ == "__main__":
     for fn in (smoke, lab_room, corridor_loop, long_corridor, large_hall, open_lobby,
-               cluttered_rooms, construction_site, legged_office):
+               cluttered_rooms, construction_site, legged_office, warehouse):
         fn()

@@ -186,14 +186,16 @@ class PipelineTest(unittest.TestCase):
             self.assertEqual(loc['status'], 'localized', json.dumps(loc))
             self.assertTrue(loc['room_pairs'], 'no room re-observed')
 
-    def load_prior(self, world):
-        """A first session of the world (other noise) as the backend's prior map."""
-        prior = os.path.join(self.tmp, 'prior')
-        run = subprocess.run(['rosrun', 'tacs_graphs', 'tacs_offline', '--world', world, '--seed',
-                              '1', '--out', prior, '--quiet'],
+    def run_offline(self, args):
+        run = subprocess.run(['rosrun', 'tacs_graphs', 'tacs_offline'] + args + ['--quiet'],
                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=240,
                              universal_newlines=True)
         self.assertEqual(run.returncode, 0, 'tacs_offline failed:\n' + run.stdout)
+
+    def load_prior(self, world):
+        """A first session of the world (other noise) as the backend's prior map."""
+        prior = os.path.join(self.tmp, 'prior')
+        self.run_offline(['--world', world, '--seed', '1', '--out', prior])
         rospy.set_param('/backend/prior_map', prior)
         rospy.wait_for_service('/backend/load_prior', timeout=10.0)
         reply = rospy.ServiceProxy('/backend/load_prior', Trigger)()
@@ -206,11 +208,7 @@ class PipelineTest(unittest.TestCase):
         runner also closes the last room before its final save, the suite only at shutdown; and
         a room may name one other wall when it was made before that wall joined the live graph."""
         out = os.path.join(self.tmp, 'offline')
-        run = subprocess.run(['rosrun', 'tacs_graphs', 'tacs_offline', '--bag', bag, '--topic',
-                              '/velodyne_points', '--out', out, '--quiet'],
-                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=240,
-                             universal_newlines=True)
-        self.assertEqual(run.returncode, 0, 'tacs_offline failed:\n' + run.stdout)
+        self.run_offline(['--bag', bag, '--topic', '/velodyne_points', '--out', out])
         with open(os.path.join(out, 'scene_graph.json')) as f:
             offline = json.load(f)
         live_kf = {k['id']: k for k in saved['keyframes']}
