@@ -8,7 +8,7 @@
 #
 #   bash scripts/prior_results.sh [OUT_FILE]
 #
-# About 40 minutes on 2 cores (99 runs, two at a time). Needs a built workspace.
+# About 90 minutes on 2 cores (99 runs, two at a time). Needs a built workspace.
 set -euo pipefail
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)"
 source "$REPO/scripts/env.sh"

@@ -59,6 +59,7 @@ namespace {
 
 Trajectory moved(const Trajectory& trajectory, const Pose3& T) {
   Trajectory out = trajectory;
+  if (T.matrix().isIdentity(0.0)) return out;
   for (StampedPose& p : out) p.pose = T * p.pose;
   return out;
 }
@@ -74,7 +75,11 @@ std::map<std::string, double> writeRunFolder(const std::string& dir, const Pipel
     ms[name] = watch.elapsedMs();
     watch = Stopwatch();
   };
-  const SceneGraph session = pipeline.sceneGraph().transformed(view.T_out_map);
+  // Moved only when there is somewhere to move it: a round trip through the rotation matrix
+  // would change the last bits of every quaternion of an ordinary run.
+  const bool moves = !view.T_out_map.matrix().isIdentity(0.0);
+  const SceneGraph session =
+      moves ? pipeline.sceneGraph().transformed(view.T_out_map) : pipeline.sceneGraph();
   const SceneGraph& graph = view.graph ? *view.graph : session;
   const MapExportConfig& map_config = pipeline.config().map_export;
   writeTum(dir + "/trajectory_tum.txt", moved(pipeline.keyframeTrajectory(), view.T_out_map));
