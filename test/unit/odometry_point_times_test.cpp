@@ -185,5 +185,27 @@ TEST(Deskew, MismatchedOffsetsLeaveTheScanAsIs) {
   EXPECT_EQ(deskew(scan, {}, v).points[0].x, 0.0f);
 }
 
+TEST(Deskew, CarriedCovariancesTurnWithTheirPoints) {
+  // A wall's plane measured 40 ms after the reference: deskewed first with no motion, then with a
+  // 90 deg/s turn, its covariance turns by the turn's 3.6 deg, as if it had been estimated anew.
+  const Eigen::Vector3d normal(1.0, 0.0, 0.0);
+  const Eigen::Matrix3d plane = Eigen::Matrix3d::Identity() - 0.999 * normal * normal.transpose();
+  BodyVelocity turn;
+  turn.angular.z() = 0.5 * M_PI;
+  turn.linear.x() = 1.5;
+  const std::vector<float> times = {0.04f, -0.04f};
+  const auto carried = redeskewCovariances({plane, plane}, times, BodyVelocity(), turn);
+  ASSERT_EQ(carried.size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    const Eigen::Matrix3d R = motionOver(turn, times[i]).linear();
+    const Eigen::Vector3d turned = R * normal;
+    EXPECT_NEAR((carried[i] * turned).norm(), 0.001, 1e-3);  // thin along the turned normal
+    EXPECT_LT((carried[i] - R * plane * R.transpose()).norm(), 1e-6);
+  }
+  EXPECT_GT(std::abs(carried[0](0, 1)), 0.05);  // the normal did turn: 3.6 deg about z
+  // Times of another length leave them as they were.
+  EXPECT_EQ(redeskewCovariances({plane}, times, BodyVelocity(), turn)[0], plane);
+}
+
 }  // namespace
 }  // namespace tacs

@@ -75,17 +75,38 @@ TEST(Preprocess, CarriesThePointTimesThroughCropAndVoxelGrid) {
   in.push_back(point(0.0f, 0.0f, 0.0f));  // "no return": dropped with its time
   in.push_back(point(3.03f, 0.03f, 0.03f));
   in.push_back(point(0.01f, 5.01f, 0.01f));
-  const std::vector<float> times = {0.01f, 0.5f, 0.03f, 0.07f};
+  const std::vector<float> times = {0.010f, 0.5f, 0.012f, 0.07f};
   std::vector<float> out_times;
   const PointCloud out = preprocess(in, PreprocessConfig(), nullptr, &times, &out_times);
   ASSERT_EQ(out.size(), 2u);
   ASSERT_EQ(out_times.size(), 2u);
-  EXPECT_NEAR(out_times[0], 0.02f, 1e-6);
+  EXPECT_NEAR(out_times[0], 0.011f, 1e-6);
   EXPECT_NEAR(out_times[1], 0.07f, 1e-6);
   // Times of another length are ignored: no times out.
   const std::vector<float> short_times = {0.01f};
   preprocess(in, PreprocessConfig(), nullptr, &short_times, &out_times);
   EXPECT_TRUE(out_times.empty());
+}
+
+TEST(VoxelDownsample, KeepsReturnsFarApartInTimeInSeparateCentroids) {
+  // A sweep's seam: its first and last firings hit the same voxel from poses the motion has
+  // moved apart, so their centroid could not be deskewed with one time.
+  PointCloud in;
+  in.push_back(point(2.01f, 0.01f, 0.01f));
+  in.push_back(point(2.02f, 0.02f, 0.02f));
+  in.push_back(point(2.03f, 0.03f, 0.03f));
+  in.push_back(point(9.0f, 9.0f, 0.0f));
+  const std::vector<float> times = {-0.050f, -0.049f, 0.049f, 0.0f};
+  std::vector<float> out_times;
+  const PointCloud out = voxelDownsample(in, 0.2, &times, &out_times);
+  ASSERT_EQ(out.size(), 3u);
+  ASSERT_EQ(out_times.size(), 3u);
+  EXPECT_NEAR(out_times[0], -0.0495f, 1e-6);
+  EXPECT_NEAR(out.points[0].x, 2.015f, 1e-5);
+  EXPECT_NEAR(out_times[1], 0.049f, 1e-6);
+  EXPECT_NEAR(out.points[1].x, 2.03f, 1e-5);
+  // Without times the same voxel is one centroid.
+  EXPECT_EQ(voxelDownsample(in, 0.2).size(), 2u);
 }
 
 TEST(VoxelDownsample, AveragesPointsOfOneVoxelAndKeepsOthersApart) {

@@ -49,4 +49,12 @@ class MotionGrid {
 PointCloud deskew(const PointCloud& scan, const std::vector<float>& offset_s,
                   const BodyVelocity& velocity);
 
+/// Covariances of a cloud deskewed with `from`, carried to the same points deskewed with `to`:
+/// each is rotated by the change of its point's transform. Exact for a neighbourhood measured at
+/// one time (a firing's neighbours); the odometry's second deskew moves points by millimetres, so
+/// their neighbourhoods need no new search. Returned unchanged when the sizes differ.
+std::vector<Eigen::Matrix3d> redeskewCovariances(const std::vector<Eigen::Matrix3d>& covariances,
+                                                 const std::vector<float>& offset_s,
+                                                 const BodyVelocity& from, const BodyVelocity& to);
+
 }  // namespace tacs

@@ -201,9 +201,12 @@ class LidarOdometry {
   void addKeyframe(OdometryResult* result, const GicpCloud::ConstPtr& scan_gicp,
                    const PointCloud::Ptr& cloud);
   void rebuildLocalMap();
-  /// The keyframe cloud handed on, from the scan deskewed to its stamp (`other_frame`: the
-  /// registered cloud is not in the stamp's frame, so it cannot be handed on as it is).
-  void attachKeyframeCloud(const PointCloud& scan, bool other_frame, OdometryResult* result) const;
+  /// The keyframe cloud handed on, from the raw scan deskewed with `velocity` over `offsets`
+  /// (none: as measured), when it differs from the registered cloud: a finer grid, or
+  /// `other_frame` (the registered cloud is not in the stamp's frame).
+  void attachKeyframeCloud(const PointCloud& scan, const std::vector<float>* offsets,
+                           const BodyVelocity& velocity, bool other_frame,
+                           OdometryResult* result) const;
   /// The middle of the sweep relative to the stamp [s] when the scan is deskewed and
   /// deskew_to_mid_sweep is on (`shifted`: the point times relative to it), else 0.
   double sweepReference(const PointCloud& scan, const std::vector<float>* offsets,

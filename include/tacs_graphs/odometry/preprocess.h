@@ -46,7 +46,8 @@ PointCloud preprocess(const PointCloud& in, const PreprocessConfig& config,
 /// works, unlike a fixed-size index grid). Each occupied voxel yields the centroid of its points.
 /// Non-finite points are skipped. Voxels come out in the order of their first point
 /// (deterministic). voxel_size <= 0 copies the finite points. With `times` (one per input point)
-/// and `times_out`, each output point's mean input time goes to `times_out`.
+/// and `times_out`, each output point's mean input time goes to `times_out`, and points more than
+/// an eighth of the times' span apart are kept in separate voxels (a sweep's seam).
 PointCloud voxelDownsample(const PointCloud& in, double voxel_size,
                            const std::vector<float>* times = nullptr,
                            std::vector<float>* times_out = nullptr);

@@ -64,4 +64,22 @@ PointCloud deskew(const PointCloud& scan, const std::vector<float>& offset_s,
   return out;
 }
 
+std::vector<Eigen::Matrix3d> redeskewCovariances(const std::vector<Eigen::Matrix3d>& covariances,
+                                                 const std::vector<float>& offset_s,
+                                                 const BodyVelocity& from, const BodyVelocity& to) {
+  if (offset_s.size() != covariances.size() || covariances.empty()) return covariances;
+  const auto [lo, hi] = std::minmax_element(offset_s.begin(), offset_s.end());
+  const MotionGrid before(from, *lo, *hi), after(to, *lo, *hi);
+  std::vector<Eigen::Matrix3d> change(before.size());
+  for (size_t c = 0; c < change.size(); ++c) {
+    change[c] = after.pose(c).linear() * before.pose(c).linear().transpose();
+  }
+  std::vector<Eigen::Matrix3d> out(covariances.size());
+  for (size_t i = 0; i < out.size(); ++i) {
+    const Eigen::Matrix3d& R = change[before.cell(offset_s[i])];
+    out[i] = R * covariances[i] * R.transpose();
+  }
+  return out;
+}
+
 }  // namespace tacs

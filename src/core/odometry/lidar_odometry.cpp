@@ -55,6 +55,18 @@ std::string format(const char* fmt, double a, double b, double c = 0.0, double d
   return buffer;
 }
 
+// The registration cloud deskewed anew (`cloud`, from `before`'s points deskewed with `from`):
+// the covariances are carried along rather than searched again (redeskewCovariances).
+GicpCloud::ConstPtr redeskewed(const PointCloud& cloud, const GicpCloud& before,
+                               const std::vector<float>& times, const BodyVelocity& from,
+                               const BodyVelocity& to) {
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(cloud.size());
+  for (const auto& p : cloud.points) points.emplace_back(p.x, p.y, p.z);
+  return GicpCloud::fromParts(std::move(points),
+                              redeskewCovariances(before.covariances(), times, from, to));
+}
+
 }  // namespace
 
 LidarOdometry::LidarOdometry(const OdometryConfig& config) : config_(config) { config_.validate(); }
@@ -339,12 +351,16 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
   // Deskewed with the guessed motion; without a motion prior the scan stays as measured.
   BodyVelocity velocity;
   if (!reset) velocity = velocity_;
-  PointCloud compensated = compensate(scan, offsets, velocity, &result.deskewed);
+  // Preprocessed first, deskewed after: each voxel centroid keeps its returns' mean time, so a
+  // dense scan is deskewed (twice with deskew_refine) at the cost of its voxels, not its returns.
+  const bool has_times = config_.deskew && offsets && offsets->size() == scan.size();
+  std::vector<float> times;
+  const PointCloud reduced = preprocess(scan, config_.preprocess, &result.preprocess,
+                                        has_times ? offsets : nullptr, &times);
+  PointCloud::Ptr cloud(new PointCloud(
+      compensate(reduced, has_times ? &times : nullptr, velocity, &result.deskewed)));
   // The preprocessed points' times, when the registration estimates the sweep's motion.
   const bool timed = result.deskewed && config_.sweep_motion;
-  std::vector<float> times;
-  PointCloud::Ptr cloud(new PointCloud(preprocess(
-      compensated, config_.preprocess, &result.preprocess, timed ? offsets : nullptr, &times)));
   const std::vector<float>* sweep_times = timed ? &times : nullptr;
   const PreprocessStats& s = result.preprocess;
   if (cloud->size() < static_cast<size_t>(config_.min_scan_points)) {
@@ -362,28 +378,27 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
     startOn(t, cloud, scan_gicp, &result);
     last_scan_stamp_ = stamp;
     stamp_pose_ = last_pose_;
-    attachKeyframeCloud(compensated, ref_s != 0.0, &result);
+    attachKeyframeCloud(scan, nullptr, velocity, ref_s != 0.0, &result);
     return finish("");
   }
 
   result.registration = registerScan(scan_gicp, *cloud, sweep_times, guess, reset, &result);
+  BodyVelocity sweep_velocity = velocity;  // the motion the registered cloud is deskewed with
   if (result.deskewed && config_.deskew_refine) {
     // Deskewed once more with the motion the registration found (the sweep's own, or the step
     // since the last scan), so the refinement below sees the scan as that motion measured it.
     const double dt = t - last_stamp_;
     const Pose3 step = last_pose_.inverse() * result.registration.T_target_source;
     const Eigen::Matrix<double, 6, 1>& extra = result.registration.sweep_velocity;
-    BodyVelocity sweep_velocity = velocityOf(step, dt);
+    sweep_velocity = velocityOf(step, dt);
     if (timed && !result.recovered) {
       sweep_velocity = velocity;
       sweep_velocity.linear += extra.head<3>();
       sweep_velocity.angular += extra.tail<3>();
     }
     result.registration.sweep_velocity.setZero();  // taken into the cloud
-    compensated = compensate(scan, offsets, sweep_velocity, &result.deskewed);
-    cloud.reset(new PointCloud(preprocess(compensated, config_.preprocess, &result.preprocess,
-                                          sweep_times ? offsets : nullptr, &times)));
-    scan_gicp = GicpCloud::build(*cloud, config_.gicp.k_neighbors, config_.gicp.num_threads);
+    cloud.reset(new PointCloud(compensate(reduced, &times, sweep_velocity, &result.deskewed)));
+    scan_gicp = redeskewed(*cloud, *scan_gicp, times, velocity, sweep_velocity);
   }
   refineOnNarrowGate(scan_gicp, sweep_times, &result.registration);
   const std::string rejected = rejection(guess, reset, result);
@@ -397,13 +412,20 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
   result.T_odom_base = stamp_pose_;
   if (isKeyframe(last_pose_)) {
     addKeyframe(&result, scan_gicp, cloud);
-    if (ref_s != 0.0) compensated = compensate(scan, point_offsets_s, velocity_, &result.deskewed);
-    attachKeyframeCloud(compensated, ref_s != 0.0, &result);
+    // The dense keyframe cloud is deskewed to the stamp (with the step's velocity) when the scan
+    // was registered at its sweep's middle, else as the registered cloud was.
+    if (ref_s != 0.0) {
+      attachKeyframeCloud(scan, point_offsets_s, velocity_, true, &result);
+    } else {
+      attachKeyframeCloud(scan, result.deskewed ? offsets : nullptr, sweep_velocity, false,
+                          &result);
+    }
   }
   return finish("");
 }
 
-void LidarOdometry::attachKeyframeCloud(const PointCloud& scan, bool other_frame,
+void LidarOdometry::attachKeyframeCloud(const PointCloud& scan, const std::vector<float>* offsets,
+                                        const BodyVelocity& velocity, bool other_frame,
                                         OdometryResult* result) const {
   // Traversability needs several points per tri-grid node and walls a dense inlier band: the
   // keyframe cloud handed on is finer than the odometry's own grid. The registered cloud is
@@ -414,7 +436,9 @@ void LidarOdometry::attachKeyframeCloud(const PointCloud& scan, bool other_frame
   PreprocessConfig fine = config_.preprocess;
   if (fine_grid) fine.voxel_size_m = config_.keyframe_cloud_voxel_m;
   fine.max_points = 0;  // walls and terrain want the dense cloud: the budget is the odometry's
-  result->keyframe_cloud.reset(new PointCloud(preprocess(scan, fine)));
+  bool deskewed = false;
+  result->keyframe_cloud.reset(
+      new PointCloud(preprocess(compensate(scan, offsets, velocity, &deskewed), fine)));
 }
 
 }  // namespace tacs

@@ -27,7 +27,8 @@ bool isFinitePoint(const pcl::PointXYZI& p) {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
 }
 
-// Open-addressing hash table from integer voxel coordinates to a running centroid. Voxels are
+// Open-addressing hash table from integer voxel coordinates (and a time slot) to a running
+// centroid. Voxels are
 // emitted in order of their first point, so the output is deterministic for a given input.
 class VoxelTable {
  public:
@@ -39,7 +40,9 @@ class VoxelTable {
     cells_.reserve(expected);
   }
 
-  void add(const std::array<int64_t, 3>& key, const pcl::PointXYZI& p, float time) {
+  using Key = std::array<int64_t, 4>;
+
+  void add(const Key& key, const pcl::PointXYZI& p, float time) {
     size_t h = hash(key) & mask_;
     while (slots_[h] >= 0 && cells_[slots_[h]].key != key) h = (h + 1) & mask_;
     if (slots_[h] < 0) {
@@ -69,15 +72,16 @@ class VoxelTable {
 
  private:
   struct Cell {
-    std::array<int64_t, 3> key;
+    Key key;
     Eigen::Vector4d sum;
     double time_sum;
     int64_t count;
   };
-  static size_t hash(const std::array<int64_t, 3>& k) {
+  static size_t hash(const Key& k) {
     uint64_t h = static_cast<uint64_t>(k[0]) * 0x9E3779B97F4A7C15ull;
     h ^= static_cast<uint64_t>(k[1]) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
     h ^= static_cast<uint64_t>(k[2]) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+    h ^= static_cast<uint64_t>(k[3]) * 0x94D049BB133111EBull + (h << 6) + (h >> 2);
     return static_cast<size_t>(h ^ (h >> 29));
   }
 
@@ -85,6 +89,11 @@ class VoxelTable {
   std::vector<Cell> cells_;
   size_t mask_ = 0;
 };
+
+// Points whose times lie more than an eighth of the sweep apart never share a voxel: the sweep's
+// first and last firings meet at its seam, where the motion has moved them apart, and a centroid
+// of both could not be deskewed by one time. Neighbouring returns of one firing keep one slot.
+constexpr double kTimeSlotsPerSweep = 8.0;
 
 }  // namespace
 
@@ -96,16 +105,25 @@ PointCloud voxelDownsample(const PointCloud& in, double voxel_size, const std::v
   if (times_out) times_out->clear();
   if (voxel_size > 0.0) {
     const double inv = 1.0 / voxel_size;
+    double t_lo = 0.0, slot_inv = 0.0;
+    if (timed && !times->empty()) {
+      const auto [lo, hi] = std::minmax_element(times->begin(), times->end());
+      t_lo = *lo;
+      if (*hi > *lo) slot_inv = kTimeSlotsPerSweep / (double(*hi) - double(*lo));
+    }
     VoxelTable table(in.points.size());
     for (size_t i = 0; i < in.points.size(); ++i) {
       const auto& p = in.points[i];
       if (!isFinitePoint(p)) continue;
       const Eigen::Vector3d scaled = Eigen::Vector3d(p.x, p.y, p.z) * inv;
       if (scaled.cwiseAbs().maxCoeff() > 1e18) continue;  // would overflow a 64-bit index
-      table.add({static_cast<int64_t>(std::floor(scaled.x())),
-                 static_cast<int64_t>(std::floor(scaled.y())),
-                 static_cast<int64_t>(std::floor(scaled.z()))},
-                p, timed ? (*times)[i] : 0.0f);
+      const float time = timed ? (*times)[i] : 0.0f;
+      table.add(
+          {static_cast<int64_t>(std::floor(scaled.x())),
+           static_cast<int64_t>(std::floor(scaled.y())),
+           static_cast<int64_t>(std::floor(scaled.z())),
+           std::isfinite(time) ? static_cast<int64_t>(std::floor((time - t_lo) * slot_inv)) : 0},
+          p, time);
     }
     table.appendCentroids(&out, timed ? times_out : nullptr);
   } else {
