@@ -202,7 +202,9 @@ TEST(BackendSession, AWallOnASurfaceSeenOverLeavesTheGraphAndStaysOutAfterRecove
   const std::string dir =
       (std::filesystem::temp_directory_path() / "tacs_backend_session_seen_over").string();
   std::filesystem::remove_all(dir);
-  BackendSession session{PipelineConfig(), BackendSessionOptions()};
+  PipelineConfig config;
+  config.walls.association.min_wall_observations = 1;  // walls seen from one keyframe here
+  BackendSession session{config, BackendSessionOptions()};
   session.addKeyframe(0, 1.0, Pose3::Identity(), Matrix6d::Zero(), smallCloud());
   session.addWalls(0, {facingWalls(), {}});
   ASSERT_EQ(session.sceneGraph().walls.size(), 2u);
@@ -223,7 +225,7 @@ TEST(BackendSession, AWallOnASurfaceSeenOverLeavesTheGraphAndStaysOutAfterRecove
   ASSERT_EQ(walls(g).size(), 1u);
   EXPECT_GT(walls(g)[0].normal.x(), 0.0);
   session.save(dir, MapExportConfig());
-  BackendSession restarted{PipelineConfig(), BackendSessionOptions()};
+  BackendSession restarted{config, BackendSessionOptions()};
   EXPECT_EQ(restarted.recover(dir), 2u);
   EXPECT_EQ(walls(restarted.sceneGraph()).size(), 1u);
   std::filesystem::remove_all(dir);

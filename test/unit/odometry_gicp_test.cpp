@@ -112,6 +112,52 @@ TEST(Gicp, RecoversAKnownMotionInASyntheticRoom) {
   EXPECT_GT(Solver(r.information).eigenvalues().minCoeff(), 0.0);
 }
 
+// The local map merged from keyframe clouds with their own covariances (no neighbour search):
+// one point per voxel at its members' centroid, discs that follow the surfaces, and a target a
+// third scan aligns to as well as to the map whose covariances were searched anew.
+TEST(MergeGicpClouds, VoxelCentroidsCarryTheKeyframesPlanes) {
+  const test::BoxRoom room;
+  const Pose3 T_a = poseFromXyzRpy(4.0, 3.0, 0.5, 0.0, 0.0, 0.3);
+  const Pose3 T_b = poseFromXyzRpy(4.6, 3.3, 0.5, 0.0, 0.0, 0.7);
+  const auto a = GicpCloud::build(preprocessed(test::renderScan(room, T_a, 1)), 10, 1);
+  const auto b = GicpCloud::build(preprocessed(test::renderScan(room, T_b, 2)), 10, 1);
+  const GicpCloud::ConstPtr merged = mergeGicpClouds({{T_a, a}, {T_b, b}}, 0.2, 2);
+  EXPECT_LT(merged->size(), a->size() + b->size());  // the views overlap: shared voxels
+  EXPECT_GT(merged->size(), std::max(a->size(), b->size()));
+  // Each point is the centroid of its voxel's members: inside that voxel.
+  for (const Eigen::Vector3d& p : merged->points()) {
+    const Eigen::Vector3d cell = (p / 0.2).array().floor();
+    EXPECT_TRUE(((p / 0.2) - cell).minCoeff() >= 0.0);
+  }
+  // Points on the floor (z about 0 in the world) a metre or more from the walls keep a vertical
+  // normal, but for some where a scan's neighbours lay along one sparse ring (no plane): the
+  // reason the map's covariances are searched anew for sparse LiDARs (local_map_covariances).
+  size_t floor = 0, vertical = 0;
+  for (size_t i = 0; i < merged->size(); ++i) {
+    const Eigen::Vector3d& p = merged->points()[i];
+    if (std::abs(p.z()) > 0.05 || p.x() < 1.0 || p.x() > 9.0 || p.y() < 1.0 || p.y() > 6.0) {
+      continue;
+    }
+    ++floor;
+    const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+    vertical += up.dot(merged->covariances()[i] * up) < 0.05;
+  }
+  EXPECT_GT(floor, 20u);
+  EXPECT_GE(vertical, 0.8 * floor) << vertical << " of " << floor;
+  // Same result as on the neighbour-searched map of the same points, within a few millimetres.
+  const Pose3 T_c = poseFromXyzRpy(4.3, 3.1, 0.52, 0.01, 0.0, 0.5);
+  const auto c = GicpCloud::build(preprocessed(test::renderScan(room, T_c, 3)), 10, 1);
+  Gicp gicp;
+  gicp.setSource(c);
+  gicp.setTarget(merged);
+  const GicpResult carried = gicp.align(T_c * Pose3(Eigen::Translation3d(0.1, -0.1, 0.0)));
+  EXPECT_LT(translationError(carried.T_target_source, T_c), 0.03);
+  EXPECT_LT(rotationErrorDeg(carried.T_target_source, T_c), 0.3);
+  gicp.setTarget(GicpCloud::build(merged->points(), 10, 1));
+  const GicpResult searched = gicp.align(T_c * Pose3(Eigen::Translation3d(0.1, -0.1, 0.0)));
+  EXPECT_LT(translationError(carried.T_target_source, searched.T_target_source), 0.01);
+}
+
 TEST(Gicp, ReusesOnePreparedTargetForManySources) {
   const test::BoxRoom room;
   const Pose3 T_world_target = poseFromXyzRpy(5.0, 3.5, 0.5, 0.0, 0.0, 0.0);

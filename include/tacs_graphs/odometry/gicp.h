@@ -91,6 +91,18 @@ class GicpCloud {
 /// in the local plane. Fewer than 3 neighbours give the identity (no known structure).
 Eigen::Matrix3d planeRegularizedCovariance(const std::vector<Eigen::Vector3d>& points,
                                            const std::vector<uint32_t>& neighbours);
+/// The same disc for a given (scatter or averaged) covariance: its smallest eigenvector is the
+/// plane's normal.
+Eigen::Matrix3d planeRegularized(const Eigen::Matrix3d& cov);
+
+/// One cloud from several, each moved by its pose, on a voxel grid: each voxel's point is the
+/// centroid of the points in it and its covariance the plane-regularised mean of theirs, turned
+/// with their poses. No neighbour search: only the KD-tree is built, so a local map of many
+/// keyframes is merged at the cost of a pass over their points (VGICP's voxel covariances,
+/// Koide et al., ICRA 2021).
+GicpCloud::ConstPtr mergeGicpClouds(
+    const std::vector<std::pair<Pose3, GicpCloud::ConstPtr>>& clouds, double voxel_m,
+    int num_threads);
 
 struct GicpResult {
   bool converged = false;  // the last step was below the eps thresholds

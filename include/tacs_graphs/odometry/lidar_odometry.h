@@ -41,8 +41,14 @@ struct OdometryConfig {
   double keyframe_angle_deg = 15.0;  // [deg] ... or after this rotation
   int local_map_keyframes = 10;      // keyframes in the sliding-window local map
   double local_map_voxel_m = 0.2;    // [m] voxel size of the merged local map
-  int min_scan_points = 100;         // fewer points after preprocessing: scan rejected
-  double max_time_gap_s = 0.5;       // [s] longer gaps reset the constant-velocity guess
+  // Where the local map's covariances come from: "neighbours" searches them anew on the merged
+  // map (several viewpoints give better planes than the sparse rings of one VLP-16 scan);
+  // "carried" averages the keyframes' own per voxel (mergeGicpClouds), no search: a dense
+  // scan's planes are already good, and a keyframe at every scan (a 1 Hz hand-held recording)
+  // then costs a pass over the window's points, not a neighbour search over the map.
+  std::string local_map_covariances = "neighbours";
+  int min_scan_points = 100;    // fewer points after preprocessing: scan rejected
+  double max_time_gap_s = 0.5;  // [s] longer gaps reset the constant-velocity guess
   // Without a motion prior (start, time gap, rejected scan) a first coarse alignment uses this
   // wider gating [m], so a jump of up to about this size is recovered.
   double recovery_correspondence_distance_m = 2.5;
@@ -74,6 +80,9 @@ struct OdometryConfig {
   // aligned coarse to fine and scored by its share of fitting points.
   std::vector<double> recovery_yaw_deg = {0.0, 30.0, -30.0, 60.0, -60.0, 90.0, -90.0, 180.0};
   double recovery_voxel_m = 0.6;  // [m] source grid of the coarse hypothesis alignments
+  // Iterations of each coarse hypothesis alignment: it only has to reach its basin, the fine pass
+  // settles it (BALM hall: 30 -> 10 saves a quarter of a recovery, same poses).
+  int recovery_coarse_iterations = 10;
   // The first scan's pose is levelled on the floor it sees (a plane at least 0.3 m below the
   // base, tilted at most level_max_tilt_deg), so a tilted hand-held sensor starts a level map. A
   // base frame on the floor (a wheeled robot's base_link) sees no floor below it: pose kept.
@@ -96,6 +105,7 @@ struct OdometryConfig {
     v("keyframe_angle_deg", keyframe_angle_deg);
     v("local_map_keyframes", local_map_keyframes);
     v("local_map_voxel_m", local_map_voxel_m);
+    v("local_map_covariances", local_map_covariances);
     v("min_scan_points", min_scan_points);
     v("max_time_gap_s", max_time_gap_s);
     v("recovery_correspondence_distance_m", recovery_correspondence_distance_m);
@@ -111,6 +121,7 @@ struct OdometryConfig {
     v("recovery_relative_fit", recovery_relative_fit);
     v("recovery_yaw_deg", recovery_yaw_deg);
     v("recovery_voxel_m", recovery_voxel_m);
+    v("recovery_coarse_iterations", recovery_coarse_iterations);
     v("level_from_floor", level_from_floor);
     v("level_max_tilt_deg", level_max_tilt_deg);
     v("keyframe_cloud_voxel_m", keyframe_cloud_voxel_m);
@@ -185,7 +196,13 @@ class LidarOdometry {
                           const std::vector<float>* sweep_times, const Pose3& guess, bool reset,
                           OdometryResult* result) const;
   GicpResult align(const GicpCloud::ConstPtr& scan, double gate_m, const Pose3& from,
-                   double robust_m, const std::vector<float>* sweep_times = nullptr) const;
+                   double robust_m, const std::vector<float>* sweep_times = nullptr) const {
+    return alignTo(local_map_, scan, gate_m, from, robust_m, config_.gicp.max_iterations,
+                   sweep_times);
+  }
+  GicpResult alignTo(const GicpCloud::ConstPtr& target, const GicpCloud::ConstPtr& scan,
+                     double gate_m, const Pose3& from, double robust_m, int max_iterations,
+                     const std::vector<float>* sweep_times = nullptr) const;
   /// Re-aligns on refine_correspondence_distance_m when it is narrower than the gate.
   void refineOnNarrowGate(const GicpCloud::ConstPtr& scan, const std::vector<float>* sweep_times,
                           GicpResult* registration) const;

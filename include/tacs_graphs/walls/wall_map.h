@@ -59,6 +59,11 @@ struct WallAssociationConfig {
   /// Landmarks shorter than this are no walls of the scene graph (m): pillar faces, the sides of
   /// cabinets and boxes. They stay landmarks (plane factors) and become walls if they grow.
   double min_wall_length = 1.0;
+  /// Landmarks observed from fewer keyframes are no walls yet: one view of a plane can be the
+  /// face of a machine, a stack of boxes or a plane through clutter. On the real hand-held hall,
+  /// such landmarks (1-2 observations, < 200 inliers) came and went with millimetre changes of
+  /// the poses, while the hall's walls had 26-160 observations.
+  int min_wall_observations = 3;
 
   template <class V>
   void visit(V& v) {
@@ -67,6 +72,7 @@ struct WallAssociationConfig {
     v("max_gap_m", max_gap);
     v("average_planes", average_planes);
     v("min_wall_length_m", min_wall_length);
+    v("min_wall_observations", min_wall_observations);
   }
   /// Throws ConfigError naming the field ("walls.association.<field>").
   void validate() const;
@@ -114,8 +120,8 @@ class WallMap {
   /// top is open: it bounds no room. Unknown ids are false.
   bool standsBeforeATallerWall(uint32_t id) const;
 
-  /// True when the landmark is a wall: at least min_wall_length long, not isSeenOver() and not
-  /// standsBeforeATallerWall().
+  /// True when the landmark is a wall: at least min_wall_length long, observed at least
+  /// min_wall_observations times, not isSeenOver() and not standsBeforeATallerWall().
   bool isWall(uint32_t id) const;
 
   /// The landmarks that are walls (isWall()).

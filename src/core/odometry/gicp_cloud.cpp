@@ -6,6 +6,7 @@
 #include "tacs_graphs/odometry/gicp.h"
 #include "tacs_graphs/odometry/kd_tree.h"
 #include "tacs_graphs/odometry/parallel.h"
+#include "tacs_graphs/odometry/voxel_index.h"
 
 namespace tacs {
 
@@ -29,6 +30,10 @@ Eigen::Matrix3d planeRegularizedCovariance(const std::vector<Eigen::Vector3d>& p
     const Eigen::Vector3d d = points[j] - mean;
     cov.noalias() += d * d.transpose();
   }
+  return planeRegularized(cov);
+}
+
+Eigen::Matrix3d planeRegularized(const Eigen::Matrix3d& cov) {
   // V diag(f, 1, 1) V^T = I - (1 - f) n n^T (f = kGicpPlaneVariance) with n the plane normal (the
   // eigenvector of the smallest eigenvalue), so only that one vector is needed: it is orthogonal
   // to the rows of cov - lambda_min I, hence their largest cross product.
@@ -75,6 +80,48 @@ GicpCloud::ConstPtr GicpCloud::build(std::vector<Eigen::Vector3d> points, int k_
     cloud->covariances_[i] = planeRegularizedCovariance(pts, indices);
   });
   return cloud;
+}
+
+GicpCloud::ConstPtr mergeGicpClouds(
+    const std::vector<std::pair<Pose3, GicpCloud::ConstPtr>>& clouds, double voxel_m,
+    int num_threads) {
+  struct Voxel {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d cov_sum = Eigen::Matrix3d::Zero();
+    int count = 0;
+  };
+  size_t total = 0;
+  for (const auto& [pose, cloud] : clouds) total += cloud->size();
+  VoxelIndex index(total / 2);
+  std::vector<Voxel> voxels;
+  voxels.reserve(total / 2);
+  const double inv = 1.0 / voxel_m;
+  for (const auto& [pose, cloud] : clouds) {
+    const Eigen::Matrix3d R = pose.linear();
+    for (size_t i = 0; i < cloud->size(); ++i) {
+      const Eigen::Vector3d p = pose * cloud->points()[i];
+      const Eigen::Vector3d scaled = (p * inv).array().floor();
+      if (!scaled.allFinite() || scaled.cwiseAbs().maxCoeff() > 1e18) continue;
+      const size_t v =
+          index.insert({static_cast<int64_t>(scaled.x()), static_cast<int64_t>(scaled.y()),
+                        static_cast<int64_t>(scaled.z()), 0});
+      if (v == voxels.size()) voxels.emplace_back();
+      Voxel& voxel = voxels[v];
+      voxel.sum += p;
+      voxel.cov_sum.noalias() += R * cloud->covariances()[i] * R.transpose();
+      ++voxel.count;
+    }
+  }
+  std::vector<Eigen::Vector3d> points(voxels.size());
+  std::vector<Eigen::Matrix3d> covariances(voxels.size());
+  // A single member keeps its disc; a mean of discs (a wall seen from several keyframes, or an
+  // edge where two walls meet) is made a disc again about its best plane.
+  parallelFor(static_cast<int64_t>(voxels.size()), num_threads, [&](int64_t i) {
+    const Voxel& v = voxels[i];
+    points[i] = v.sum / v.count;
+    covariances[i] = v.count == 1 ? v.cov_sum : planeRegularized(v.cov_sum);
+  });
+  return GicpCloud::fromParts(std::move(points), std::move(covariances));
 }
 
 GicpCloud::ConstPtr GicpCloud::fromParts(std::vector<Eigen::Vector3d> points,

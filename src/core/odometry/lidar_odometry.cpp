@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/timing.h"
@@ -18,6 +19,8 @@ void OdometryConfig::validate() const {
   requireConfig(keyframe_angle_deg > 0.0, "odometry.keyframe_angle_deg", "must be > 0");
   requireConfig(local_map_keyframes >= 1, "odometry.local_map_keyframes", "must be >= 1");
   requireConfig(local_map_voxel_m > 0.0, "odometry.local_map_voxel_m", "must be > 0");
+  requireConfig(local_map_covariances == "neighbours" || local_map_covariances == "carried",
+                "odometry.local_map_covariances", "must be neighbours or carried");
   requireConfig(min_scan_points >= 3 * gicp.k_neighbors, "odometry.min_scan_points",
                 "must be >= 3 * gicp.k_neighbors");
   requireConfig(max_time_gap_s > 0.0, "odometry.max_time_gap_s", "must be > 0");
@@ -39,6 +42,8 @@ void OdometryConfig::validate() const {
   requireConfig(recovery_min_fit >= 0.0 && recovery_min_fit <= 1.0, "odometry.recovery_min_fit",
                 "must be in [0, 1]");
   requireConfig(recovery_voxel_m >= 0.0, "odometry.recovery_voxel_m", "must be >= 0");
+  requireConfig(recovery_coarse_iterations >= 1, "odometry.recovery_coarse_iterations",
+                "must be >= 1");
   requireConfig(recovery_relative_fit >= 0.0 && recovery_relative_fit <= 1.0,
                 "odometry.recovery_relative_fit", "must be in [0, 1]");
   requireConfig(level_max_tilt_deg > 0.0 && level_max_tilt_deg < 90.0,
@@ -111,8 +116,12 @@ void LidarOdometry::addKeyframe(OdometryResult* result, const GicpCloud::ConstPt
 }
 
 void LidarOdometry::rebuildLocalMap() {
-  // Covariances are recomputed on the merged map: several viewpoints give better planes than
-  // the sparse rings of one VLP-16 scan.
+  if (config_.local_map_covariances == "carried") {
+    std::vector<std::pair<Pose3, GicpCloud::ConstPtr>> clouds;
+    for (const Keyframe& kf : window_) clouds.emplace_back(kf.T_odom_base, kf.gicp);
+    local_map_ = mergeGicpClouds(clouds, config_.local_map_voxel_m, config_.gicp.num_threads);
+    return;
+  }
   PointCloud merged;
   for (const Keyframe& kf : window_) {
     const Eigen::Affine3f T = kf.T_odom_base.cast<float>();
@@ -133,13 +142,16 @@ PointCloud LidarOdometry::compensate(const PointCloud& scan, const std::vector<f
   return tacs::deskew(scan, *offsets, velocity);
 }
 
-GicpResult LidarOdometry::align(const GicpCloud::ConstPtr& scan, double gate_m, const Pose3& from,
-                                double robust_m, const std::vector<float>* sweep_times) const {
+GicpResult LidarOdometry::alignTo(const GicpCloud::ConstPtr& target,
+                                  const GicpCloud::ConstPtr& scan, double gate_m, const Pose3& from,
+                                  double robust_m, int max_iterations,
+                                  const std::vector<float>* sweep_times) const {
   GicpConfig gated = config_.gicp;
   gated.max_correspondence_distance_m = gate_m;
   gated.robust_plane_distance_m = robust_m;
+  gated.max_iterations = max_iterations;
   Gicp gicp(gated);
-  gicp.setTarget(local_map_);
+  gicp.setTarget(target);
   gicp.setSource(scan);
   if (sweep_times) gicp.setSourceTimes({sweep_times->begin(), sweep_times->end()});
   return gicp.align(from);
@@ -175,6 +187,13 @@ GicpResult LidarOdometry::recoverFromHypotheses(const PointCloud& cloud,
   const GicpCloud::ConstPtr sparse =
       GicpCloud::build(voxelDownsample(cloud, config_.recovery_voxel_m), config_.gicp.k_neighbors,
                        config_.gicp.num_threads);
+  // The coarse passes align to the local map on the same grid: its voxels' covariances are
+  // merged, not searched, and a wide gate then searches a few thousand map points, not all.
+  const GicpCloud::ConstPtr coarse_map =
+      config_.recovery_voxel_m > config_.local_map_voxel_m
+          ? mergeGicpClouds({{Pose3::Identity(), local_map_}}, config_.recovery_voxel_m,
+                            config_.gicp.num_threads)
+          : local_map_;
   const double wide_m = std::max(config_.recovery_correspondence_distance_m,
                                  config_.gicp.max_correspondence_distance_m);
   GicpResult best;
@@ -193,17 +212,23 @@ GicpResult LidarOdometry::recoverFromHypotheses(const PointCloud& cloud,
     }
   }
   // The coarse alignments are independent and each too small to split across threads
-  // (parallel.h), so they run side by side; the fine passes follow in the listed order.
+  // (parallel.h), so they run side by side; the fine passes follow, best coarse fit first (ties:
+  // in the listed order).
   const int n = static_cast<int>(starts.size());
   std::vector<Pose3> coarse(starts.size());
   std::vector<double> coarse_fit(starts.size());
 #pragma omp parallel for num_threads(resolveThreads(config_.gicp.num_threads)) schedule(dynamic, 1)
   for (int i = 0; i < n; ++i) {
-    coarse[i] =
-        align(sparse, wide_m, starts[i], config_.gicp.robust_plane_distance_m).T_target_source;
+    coarse[i] = alignTo(coarse_map, sparse, wide_m, starts[i], config_.gicp.robust_plane_distance_m,
+                        config_.recovery_coarse_iterations)
+                    .T_target_source;
     coarse_fit[i] = fitOf(sparse, coarse[i]);
   }
-  for (int i = 0; i < n; ++i) {
+  std::vector<int> order(starts.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return coarse_fit[a] > coarse_fit[b]; });
+  for (int i : order) {
     if (coarse_fit[i] <= best_fit) continue;  // the fine pass rarely gains what the coarse lacks
     GicpResult fine = align(scan, config_.gicp.max_correspondence_distance_m, coarse[i],
                             config_.gicp.robust_plane_distance_m);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tacs_graphs/common/config.h"
+#include "tacs_graphs/odometry/voxel_index.h"
 
 namespace tacs {
 
@@ -27,29 +28,16 @@ bool isFinitePoint(const pcl::PointXYZI& p) {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
 }
 
-// Open-addressing hash table from integer voxel coordinates (and a time slot) to a running
-// centroid. Voxels are
-// emitted in order of their first point, so the output is deterministic for a given input.
+// Integer voxel coordinates (and a time slot) to a running centroid, emitted in order of each
+// voxel's first point.
 class VoxelTable {
  public:
-  explicit VoxelTable(size_t expected) {
-    size_t capacity = 16;
-    while (capacity < 2 * expected) capacity *= 2;
-    slots_.assign(capacity, -1);
-    mask_ = capacity - 1;
-    cells_.reserve(expected);
-  }
+  explicit VoxelTable(size_t expected) : index_(expected) { cells_.reserve(expected); }
 
-  using Key = std::array<int64_t, 4>;
-
-  void add(const Key& key, const pcl::PointXYZI& p, float time) {
-    size_t h = hash(key) & mask_;
-    while (slots_[h] >= 0 && cells_[slots_[h]].key != key) h = (h + 1) & mask_;
-    if (slots_[h] < 0) {
-      slots_[h] = static_cast<int64_t>(cells_.size());
-      cells_.push_back({key, Eigen::Vector4d::Zero(), 0.0, 0});
-    }
-    Cell& c = cells_[slots_[h]];
+  void add(const VoxelIndex::Key& key, const pcl::PointXYZI& p, float time) {
+    const size_t i = index_.insert(key);
+    if (i == cells_.size()) cells_.push_back({Eigen::Vector4d::Zero(), 0.0, 0});
+    Cell& c = cells_[i];
     c.sum += Eigen::Vector4d(p.x, p.y, p.z, p.intensity);
     c.time_sum += time;
     ++c.count;
@@ -72,22 +60,12 @@ class VoxelTable {
 
  private:
   struct Cell {
-    Key key;
     Eigen::Vector4d sum;
     double time_sum;
     int64_t count;
   };
-  static size_t hash(const Key& k) {
-    uint64_t h = static_cast<uint64_t>(k[0]) * 0x9E3779B97F4A7C15ull;
-    h ^= static_cast<uint64_t>(k[1]) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
-    h ^= static_cast<uint64_t>(k[2]) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
-    h ^= static_cast<uint64_t>(k[3]) * 0x94D049BB133111EBull + (h << 6) + (h >> 2);
-    return static_cast<size_t>(h ^ (h >> 29));
-  }
-
-  std::vector<int64_t> slots_;
+  VoxelIndex index_;
   std::vector<Cell> cells_;
-  size_t mask_ = 0;
 };
 
 // Points whose times lie more than an eighth of the sweep apart never share a voxel: the sweep's

@@ -15,6 +15,7 @@ void WallAssociationConfig::validate() const {
   requireConfig(max_plane_distance > 0.0, p + "max_plane_distance_m", "must be > 0");
   requireConfig(max_gap >= 0.0, p + "max_gap_m", "must be >= 0");
   requireConfig(min_wall_length >= 0.0, p + "min_wall_length_m", "must be >= 0");
+  requireConfig(min_wall_observations >= 1, p + "min_wall_observations", "must be >= 1");
 }
 
 namespace {
@@ -255,6 +256,7 @@ bool WallMap::standsBeforeATallerWall(uint32_t id) const {
 bool WallMap::isWall(uint32_t id) const {
   const auto it = landmarks_.find(id);
   return it != landmarks_.end() && it->second.length() >= config_.min_wall_length &&
+         it->second.observations >= static_cast<uint32_t>(config_.min_wall_observations) &&
          !isSeenOver(id) && !standsBeforeATallerWall(id);
 }
 

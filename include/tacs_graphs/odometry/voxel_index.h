@@ -1,0 +1,61 @@
+// Integer voxel coordinates (and a fourth slot, e.g. a time slot) to dense cell indices: an
+// open-addressing hash table whose cells are numbered in order of their first key, so what is
+// built from it is deterministic for a given input order. Shared by the scan downsampling and
+// the local map's merge, where std::unordered_map's node per voxel cost more than the rest.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace tacs {
+
+class VoxelIndex {
+ public:
+  using Key = std::array<int64_t, 4>;
+
+  /// Sized for about `expected` distinct keys (it grows past them).
+  explicit VoxelIndex(size_t expected) { reset(expected); }
+
+  /// The key's cell index: size() before the call when the key is new.
+  size_t insert(const Key& key) {
+    if (2 * (keys_.size() + 1) > slots_.size()) grow();
+    size_t h = hash(key) & mask_;
+    while (slots_[h] >= 0 && keys_[slots_[h]] != key) h = (h + 1) & mask_;
+    if (slots_[h] < 0) {
+      slots_[h] = static_cast<int64_t>(keys_.size());
+      keys_.push_back(key);
+    }
+    return static_cast<size_t>(slots_[h]);
+  }
+
+  size_t size() const { return keys_.size(); }
+
+ private:
+  void reset(size_t expected) {
+    size_t capacity = 16;
+    while (capacity < 2 * expected) capacity *= 2;
+    slots_.assign(capacity, -1);
+    mask_ = capacity - 1;
+    keys_.reserve(expected);
+  }
+  void grow() {
+    std::vector<Key> keys = std::move(keys_);
+    reset(2 * keys.size() + 8);
+    for (const Key& k : keys) insert(k);
+  }
+  static size_t hash(const Key& k) {
+    uint64_t h = static_cast<uint64_t>(k[0]) * 0x9E3779B97F4A7C15ull;
+    h ^= static_cast<uint64_t>(k[1]) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+    h ^= static_cast<uint64_t>(k[2]) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+    h ^= static_cast<uint64_t>(k[3]) * 0x94D049BB133111EBull + (h << 6) + (h >> 2);
+    return static_cast<size_t>(h ^ (h >> 29));
+  }
+
+  std::vector<int64_t> slots_;
+  std::vector<Key> keys_;
+  size_t mask_ = 0;
+};
+
+}  // namespace tacs
