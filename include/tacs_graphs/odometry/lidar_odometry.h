@@ -218,6 +218,7 @@ class LidarOdometry {
   void addKeyframe(OdometryResult* result, const GicpCloud::ConstPtr& scan_gicp,
                    const PointCloud::Ptr& cloud);
   void rebuildLocalMap();
+  GicpCloud::ConstPtr coarseMap() const;
   /// The keyframe cloud handed on, from the raw scan deskewed with `velocity` over `offsets`
   /// (none: as measured), when it differs from the registered cloud: a finer grid, or
   /// `other_frame` (the registered cloud is not in the stamp's frame).
@@ -248,6 +249,9 @@ class LidarOdometry {
   double recent_fit_ = 0.0;       // running mean of the accepted scans' fit
   std::deque<Keyframe> window_;
   GicpCloud::ConstPtr local_map_;
+  // The local map on recovery_voxel_m's grid (coarseMap()), made when first needed after each
+  // keyframe.
+  mutable GicpCloud::ConstPtr coarse_map_;
   uint32_t next_keyframe_id_ = 0;
 };
 

@@ -115,7 +115,20 @@ void LidarOdometry::addKeyframe(OdometryResult* result, const GicpCloud::ConstPt
   rebuildLocalMap();
 }
 
+GicpCloud::ConstPtr LidarOdometry::coarseMap() const {
+  // The coarse passes align to the local map on their own grid: its voxels' covariances are
+  // merged, not searched, and a wide gate then searches a few thousand map points, not all.
+  if (!coarse_map_) {
+    coarse_map_ = config_.recovery_voxel_m > config_.local_map_voxel_m
+                      ? mergeGicpClouds({{Pose3::Identity(), local_map_}}, config_.recovery_voxel_m,
+                                        config_.gicp.num_threads)
+                      : local_map_;
+  }
+  return coarse_map_;
+}
+
 void LidarOdometry::rebuildLocalMap() {
+  coarse_map_.reset();
   if (config_.local_map_covariances == "carried") {
     std::vector<std::pair<Pose3, GicpCloud::ConstPtr>> clouds;
     for (const Keyframe& kf : window_) clouds.emplace_back(kf.T_odom_base, kf.gicp);
@@ -187,13 +200,7 @@ GicpResult LidarOdometry::recoverFromHypotheses(const PointCloud& cloud,
   const GicpCloud::ConstPtr sparse =
       GicpCloud::build(voxelDownsample(cloud, config_.recovery_voxel_m), config_.gicp.k_neighbors,
                        config_.gicp.num_threads);
-  // The coarse passes align to the local map on the same grid: its voxels' covariances are
-  // merged, not searched, and a wide gate then searches a few thousand map points, not all.
-  const GicpCloud::ConstPtr coarse_map =
-      config_.recovery_voxel_m > config_.local_map_voxel_m
-          ? mergeGicpClouds({{Pose3::Identity(), local_map_}}, config_.recovery_voxel_m,
-                            config_.gicp.num_threads)
-          : local_map_;
+  const GicpCloud::ConstPtr coarse_map = coarseMap();
   const double wide_m = std::max(config_.recovery_correspondence_distance_m,
                                  config_.gicp.max_correspondence_distance_m);
   GicpResult best;
