@@ -218,6 +218,16 @@ class LidarOdometry {
   void addKeyframe(OdometryResult* result, const GicpCloud::ConstPtr& scan_gicp,
                    const PointCloud::Ptr& cloud);
   void rebuildLocalMap();
+  /// Why a scan of `points` preprocessed points is not registered (too few, with the counts of
+  /// what preprocessing dropped), or "".
+  std::string tooFewPoints(size_t points, const PreprocessStats& stats) const;
+  /// Deskews the preprocessed scan again with the registered motion (deskew_refine) into `cloud`
+  /// and `scan_gicp` (covariances carried); returns that motion.
+  BodyVelocity deskewWithRegisteredMotion(double t, const PointCloud& reduced,
+                                          const std::vector<float>& times,
+                                          const BodyVelocity& velocity, bool timed,
+                                          OdometryResult* result, PointCloud::Ptr* cloud,
+                                          GicpCloud::ConstPtr* scan_gicp) const;
   GicpCloud::ConstPtr coarseMap() const;
   /// The keyframe cloud handed on, from the raw scan deskewed with `velocity` over `offsets`
   /// (none: as measured), when it differs from the registered cloud: a finer grid, or

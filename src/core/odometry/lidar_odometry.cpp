@@ -394,15 +394,8 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
   // The preprocessed points' times, when the registration estimates the sweep's motion.
   const bool timed = result.deskewed && config_.sweep_motion;
   const std::vector<float>* sweep_times = timed ? &times : nullptr;
-  const PreprocessStats& s = result.preprocess;
-  if (cloud->size() < static_cast<size_t>(config_.min_scan_points)) {
-    const std::string counts = std::to_string(s.input) + " points in, " +
-                               std::to_string(s.non_finite) + " non-finite, " +
-                               std::to_string(s.out_of_range) + " out of range";
-    if (cloud->empty()) return finish("empty scan after preprocessing (" + counts + ")");
-    return finish("too few points after preprocessing (" + std::to_string(cloud->size()) + " < " +
-                  std::to_string(config_.min_scan_points) + "; " + counts + ")");
-  }
+  const std::string too_few = tooFewPoints(cloud->size(), result.preprocess);
+  if (!too_few.empty()) return finish(too_few);
   GicpCloud::ConstPtr scan_gicp =
       GicpCloud::build(*cloud, config_.gicp.k_neighbors, config_.gicp.num_threads);
 
@@ -415,22 +408,11 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
   }
 
   result.registration = registerScan(scan_gicp, *cloud, sweep_times, guess, reset, &result);
-  BodyVelocity sweep_velocity = velocity;  // the motion the registered cloud is deskewed with
+  // The motion the registered cloud is deskewed with.
+  BodyVelocity sweep_velocity = velocity;
   if (result.deskewed && config_.deskew_refine) {
-    // Deskewed once more with the motion the registration found (the sweep's own, or the step
-    // since the last scan), so the refinement below sees the scan as that motion measured it.
-    const double dt = t - last_stamp_;
-    const Pose3 step = last_pose_.inverse() * result.registration.T_target_source;
-    const Eigen::Matrix<double, 6, 1>& extra = result.registration.sweep_velocity;
-    sweep_velocity = velocityOf(step, dt);
-    if (timed && !result.recovered) {
-      sweep_velocity = velocity;
-      sweep_velocity.linear += extra.head<3>();
-      sweep_velocity.angular += extra.tail<3>();
-    }
-    result.registration.sweep_velocity.setZero();  // taken into the cloud
-    cloud.reset(new PointCloud(compensate(reduced, &times, sweep_velocity, &result.deskewed)));
-    scan_gicp = redeskewed(*cloud, *scan_gicp, times, velocity, sweep_velocity);
+    sweep_velocity =
+        deskewWithRegisteredMotion(t, reduced, times, velocity, timed, &result, &cloud, &scan_gicp);
   }
   refineOnNarrowGate(scan_gicp, sweep_times, &result.registration);
   const std::string rejected = rejection(guess, reset, result);
@@ -454,6 +436,39 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
     }
   }
   return finish("");
+}
+
+std::string LidarOdometry::tooFewPoints(size_t points, const PreprocessStats& s) const {
+  if (points >= static_cast<size_t>(config_.min_scan_points)) return "";
+  const std::string counts = std::to_string(s.input) + " points in, " +
+                             std::to_string(s.non_finite) + " non-finite, " +
+                             std::to_string(s.out_of_range) + " out of range";
+  if (points == 0) return "empty scan after preprocessing (" + counts + ")";
+  return "too few points after preprocessing (" + std::to_string(points) + " < " +
+         std::to_string(config_.min_scan_points) + "; " + counts + ")";
+}
+
+BodyVelocity LidarOdometry::deskewWithRegisteredMotion(double t, const PointCloud& reduced,
+                                                       const std::vector<float>& times,
+                                                       const BodyVelocity& velocity, bool timed,
+                                                       OdometryResult* result,
+                                                       PointCloud::Ptr* cloud,
+                                                       GicpCloud::ConstPtr* scan_gicp) const {
+  // Deskewed once more with the motion the registration found (the sweep's own, or the step
+  // since the last scan), so the refinement after it sees the scan as that motion measured it.
+  const double dt = t - last_stamp_;
+  const Pose3 step = last_pose_.inverse() * result->registration.T_target_source;
+  const Eigen::Matrix<double, 6, 1>& extra = result->registration.sweep_velocity;
+  BodyVelocity sweep_velocity = velocityOf(step, dt);
+  if (timed && !result->recovered) {
+    sweep_velocity = velocity;
+    sweep_velocity.linear += extra.head<3>();
+    sweep_velocity.angular += extra.tail<3>();
+  }
+  result->registration.sweep_velocity.setZero();  // taken into the cloud
+  cloud->reset(new PointCloud(compensate(reduced, &times, sweep_velocity, &result->deskewed)));
+  *scan_gicp = redeskewed(**cloud, **scan_gicp, times, velocity, sweep_velocity);
+  return sweep_velocity;
 }
 
 void LidarOdometry::attachKeyframeCloud(const PointCloud& scan, const std::vector<float>* offsets,
