@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tacs_graphs/common/types.h"
+#include "tacs_graphs/odometry/carried_voxel_map.h"
 #include "tacs_graphs/odometry/deskew.h"
 #include "tacs_graphs/odometry/floor_level.h"
 #include "tacs_graphs/odometry/gicp.h"
@@ -259,6 +260,8 @@ class LidarOdometry {
   double recent_fit_ = 0.0;       // running mean of the accepted scans' fit
   std::deque<Keyframe> window_;
   GicpCloud::ConstPtr local_map_;
+  // The window's voxels with carried covariances (local_map_covariances: carried).
+  std::unique_ptr<CarriedVoxelMap> carried_map_;
   // The local map on recovery_voxel_m's grid (coarseMap()), made when first needed after each
   // keyframe.
   mutable GicpCloud::ConstPtr coarse_map_;

@@ -74,7 +74,13 @@ GicpCloud::ConstPtr redeskewed(const PointCloud& cloud, const GicpCloud& before,
 
 }  // namespace
 
-LidarOdometry::LidarOdometry(const OdometryConfig& config) : config_(config) { config_.validate(); }
+LidarOdometry::LidarOdometry(const OdometryConfig& config) : config_(config) {
+  config_.validate();
+  if (config_.local_map_covariances == "carried") {
+    carried_map_ =
+        std::make_unique<CarriedVoxelMap>(config_.local_map_voxel_m, config_.gicp.num_threads);
+  }
+}
 
 Pose3 LidarOdometry::predict(double stamp, bool* reset) const {
   const double dt = stamp - last_stamp_;
@@ -110,8 +116,12 @@ void LidarOdometry::addKeyframe(OdometryResult* result, const GicpCloud::ConstPt
   result->is_keyframe = true;
   result->keyframe_id = kf.id;
   result->keyframe_cloud = cloud;
+  if (carried_map_) carried_map_->add(kf.id, kf.T_odom_base, *kf.gicp);
   window_.push_back(std::move(kf));
-  while (window_.size() > static_cast<size_t>(config_.local_map_keyframes)) window_.pop_front();
+  while (window_.size() > static_cast<size_t>(config_.local_map_keyframes)) {
+    if (carried_map_) carried_map_->remove(window_.front().id);
+    window_.pop_front();
+  }
   rebuildLocalMap();
 }
 
@@ -129,10 +139,8 @@ GicpCloud::ConstPtr LidarOdometry::coarseMap() const {
 
 void LidarOdometry::rebuildLocalMap() {
   coarse_map_.reset();
-  if (config_.local_map_covariances == "carried") {
-    std::vector<std::pair<Pose3, GicpCloud::ConstPtr>> clouds;
-    for (const Keyframe& kf : window_) clouds.emplace_back(kf.T_odom_base, kf.gicp);
-    local_map_ = mergeGicpClouds(clouds, config_.local_map_voxel_m, config_.gicp.num_threads);
+  if (carried_map_) {
+    local_map_ = carried_map_->cloud();
     return;
   }
   PointCloud merged;
