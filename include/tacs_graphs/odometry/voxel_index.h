@@ -20,30 +20,40 @@ class VoxelIndex {
 
   /// The key's cell index: size() before the call when the key is new.
   size_t insert(const Key& key) {
-    if (2 * (keys_.size() + 1) > slots_.size()) grow();
+    if (2 * (size_ + 1) > slots_.size()) grow();
     size_t h = hash(key) & mask_;
-    while (slots_[h] >= 0 && !same(keys_[slots_[h]], key)) h = (h + 1) & mask_;
-    if (slots_[h] < 0) {
-      slots_[h] = static_cast<int64_t>(keys_.size());
-      keys_.push_back(key);
-    }
-    return static_cast<size_t>(slots_[h]);
+    // The key sits in its slot: a probe reads one slot, not the slot and then a key elsewhere.
+    while (slots_[h].cell >= 0 && !same(slots_[h].key, key)) h = (h + 1) & mask_;
+    if (slots_[h].cell < 0) slots_[h] = {key, static_cast<int64_t>(size_++)};
+    return static_cast<size_t>(slots_[h].cell);
   }
 
-  size_t size() const { return keys_.size(); }
+  size_t size() const { return size_; }
 
  private:
+  struct Slot {
+    Key key;
+    int64_t cell = -1;
+  };
+
   void reset(size_t expected) {
     size_t capacity = 16;
     while (capacity < 2 * expected) capacity *= 2;
-    slots_.assign(capacity, -1);
+    slots_.assign(capacity, Slot());
     mask_ = capacity - 1;
-    keys_.reserve(expected);
+    size_ = 0;
   }
   void grow() {
-    std::vector<Key> keys = std::move(keys_);
-    reset(2 * keys.size() + 8);
-    for (const Key& k : keys) insert(k);
+    std::vector<Slot> old = std::move(slots_);
+    const size_t n = size_;
+    reset(2 * n + 8);
+    for (const Slot& s : old) {
+      if (s.cell < 0) continue;
+      size_t h = hash(s.key) & mask_;
+      while (slots_[h].cell >= 0) h = (h + 1) & mask_;
+      slots_[h] = s;
+    }
+    size_ = n;
   }
   // Spelled out: std::array's == became a memcmp call, a few percent of a dense scan's odometry.
   static bool same(const Key& a, const Key& b) {
@@ -57,9 +67,9 @@ class VoxelIndex {
     return static_cast<size_t>(h ^ (h >> 29));
   }
 
-  std::vector<int64_t> slots_;
-  std::vector<Key> keys_;
+  std::vector<Slot> slots_;
   size_t mask_ = 0;
+  size_t size_ = 0;
 };
 
 }  // namespace tacs

@@ -89,7 +89,7 @@ PointCloud voxelDownsample(const PointCloud& in, double voxel_size, const std::v
       t_lo = *lo;
       if (*hi > *lo) slot_inv = kTimeSlotsPerSweep / (double(*hi) - double(*lo));
     }
-    VoxelTable table(in.points.size());
+    VoxelTable table(in.points.size() / 4);  // grows when more voxels are occupied
     for (size_t i = 0; i < in.points.size(); ++i) {
       const auto& p = in.points[i];
       if (!isFinitePoint(p)) continue;
