@@ -3,10 +3,10 @@
 #include <cmath>
 #include <limits>
 
+#include "tacs_graphs/odometry/carried_voxel_map.h"
 #include "tacs_graphs/odometry/gicp.h"
 #include "tacs_graphs/odometry/kd_tree.h"
 #include "tacs_graphs/odometry/parallel.h"
-#include "tacs_graphs/odometry/voxel_index.h"
 
 namespace tacs {
 
@@ -85,43 +85,11 @@ GicpCloud::ConstPtr GicpCloud::build(std::vector<Eigen::Vector3d> points, int k_
 GicpCloud::ConstPtr mergeGicpClouds(
     const std::vector<std::pair<Pose3, GicpCloud::ConstPtr>>& clouds, double voxel_m,
     int num_threads) {
-  struct Voxel {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d cov_sum = Eigen::Matrix3d::Zero();
-    int count = 0;
-  };
-  size_t total = 0;
-  for (const auto& [pose, cloud] : clouds) total += cloud->size();
-  VoxelIndex index(total / 2);
-  std::vector<Voxel> voxels;
-  voxels.reserve(total / 2);
-  const double inv = 1.0 / voxel_m;
-  for (const auto& [pose, cloud] : clouds) {
-    const Eigen::Matrix3d R = pose.linear();
-    for (size_t i = 0; i < cloud->size(); ++i) {
-      const Eigen::Vector3d p = pose * cloud->points()[i];
-      const Eigen::Vector3d scaled = (p * inv).array().floor();
-      if (!scaled.allFinite() || scaled.cwiseAbs().maxCoeff() > 1e18) continue;
-      const size_t v =
-          index.insert({static_cast<int64_t>(scaled.x()), static_cast<int64_t>(scaled.y()),
-                        static_cast<int64_t>(scaled.z()), 0});
-      if (v == voxels.size()) voxels.emplace_back();
-      Voxel& voxel = voxels[v];
-      voxel.sum += p;
-      voxel.cov_sum.noalias() += R * cloud->covariances()[i] * R.transpose();
-      ++voxel.count;
-    }
+  CarriedVoxelMap map(voxel_m, num_threads);
+  for (size_t i = 0; i < clouds.size(); ++i) {
+    map.add(static_cast<uint32_t>(i), clouds[i].first, *clouds[i].second);
   }
-  std::vector<Eigen::Vector3d> points(voxels.size());
-  std::vector<Eigen::Matrix3d> covariances(voxels.size());
-  // A single member keeps its disc; a mean of discs (a wall seen from several keyframes, or an
-  // edge where two walls meet) is made a disc again about its best plane.
-  parallelFor(static_cast<int64_t>(voxels.size()), num_threads, [&](int64_t i) {
-    const Voxel& v = voxels[i];
-    points[i] = v.sum / v.count;
-    covariances[i] = v.count == 1 ? v.cov_sum : planeRegularized(v.cov_sum);
-  });
-  return GicpCloud::fromParts(std::move(points), std::move(covariances));
+  return map.cloud();
 }
 
 GicpCloud::ConstPtr GicpCloud::fromParts(std::vector<Eigen::Vector3d> points,
