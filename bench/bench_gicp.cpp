@@ -130,7 +130,7 @@ std::vector<Row> headToHead(const tacs::PointCloud::Ptr& target,
 }  // namespace
 
 int main(int argc, char** argv) {
-  tacs::bench::usePassiveOpenMpWait(argv);
+  tacs::bench::setUpProcess(argv);
   std::string data_dir;
   int reps = 10;
   int threads = 2;

@@ -264,7 +264,7 @@ std::vector<std::string> defaultWorlds() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  tacs::bench::usePassiveOpenMpWait(argv);
+  tacs::bench::setUpProcess(argv);
   std::vector<std::string> worlds;
   double spacing = 0.5, drift_scale = 1.0;
   uint64_t seed = 7;

@@ -35,7 +35,7 @@ tacs::Pose3 truePose(double t) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  tacs::bench::usePassiveOpenMpWait(argv);
+  tacs::bench::setUpProcess(argv);
   int scans = 60;
   tacs::OdometryConfig config;
   for (int i = 1; i < argc; ++i) {

@@ -54,7 +54,7 @@ const tacs::StampedPose& nearest(const tacs::Trajectory& ref, double stamp) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  tacs::bench::usePassiveOpenMpWait(argv);
+  tacs::bench::setUpProcess(argv);
   std::string data_dir, config_path;
   int every = 1;
   bool steps = false;

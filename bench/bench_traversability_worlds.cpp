@@ -135,7 +135,7 @@ WorldScore runWorld(const std::string& path, const tacs::bench::WorldsArgs& args
 }  // namespace
 
 int main(int argc, char** argv) {
-  tacs::bench::usePassiveOpenMpWait(argv);
+  tacs::bench::setUpProcess(argv);
   tacs::bench::WorldsArgs args;
   size_t every = 5;
   std::vector<char*> rest = {argv[0]};

@@ -4,12 +4,14 @@
 #include <exception>
 
 #include "tacs_graphs/common/config.h"
+#include "tacs_graphs/common/heap.h"
 #include "tacs_graphs/ros/gicp_odometry_node.h"
 #include "tacs_graphs/ros/node_runner.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "gicp_odometry", ros::init_options::NoSigintHandler);
   tacs::installStopHandler();
+  tacs::retainFreedHeapMemory();
   ros::NodeHandle nh;
   ros::NodeHandle pnh("~");
   try {

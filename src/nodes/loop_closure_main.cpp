@@ -2,12 +2,14 @@
 #include <ros/ros.h>
 
 #include "tacs_graphs/common/config.h"
+#include "tacs_graphs/common/heap.h"
 #include "tacs_graphs/ros/loop_closure_node.h"
 #include "tacs_graphs/ros/node_runner.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "loop_closure", ros::init_options::NoSigintHandler);
   tacs::installStopHandler();
+  tacs::retainFreedHeapMemory();
   ros::NodeHandle nh;
   ros::NodeHandle pnh("~");
   try {

@@ -2,12 +2,14 @@
 #include <ros/ros.h>
 
 #include "tacs_graphs/common/config.h"
+#include "tacs_graphs/common/heap.h"
 #include "tacs_graphs/ros/node_runner.h"
 #include "tacs_graphs/ros/traversability_node.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "traversability", ros::init_options::NoSigintHandler);
   tacs::installStopHandler();
+  tacs::retainFreedHeapMemory();
   ros::NodeHandle nh;
   ros::NodeHandle pnh("~");
   try {

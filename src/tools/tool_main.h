@@ -6,10 +6,13 @@
 #include <iostream>
 #include <string>
 
+#include "tacs_graphs/common/heap.h"
+
 namespace tacs::tools {
 
 template <class Parse, class Run, class Usage>
 int toolMain(const std::string& name, int argc, char** argv, Parse parse, Run run, Usage usage) {
+  retainFreedHeapMemory();
   decltype(parse(argc, argv)) options;
   try {
     options = parse(argc, argv);
