@@ -130,7 +130,7 @@ std::vector<Row> headToHead(const tacs::PointCloud::Ptr& target,
 }  // namespace
 
 int main(int argc, char** argv) {
-  tacs::bench::setUpProcess(argv);
+  tacs::setUpProcess(argv);
   std::string data_dir;
   int reps = 10;
   int threads = 2;
@@ -229,7 +229,7 @@ int main(int argc, char** argv) {
   std::printf("k = %d, max correspondence distance %.2f m, initial guess identity, %d reps\n",
               config.k_neighbors, config.max_correspondence_distance_m, reps);
   std::printf("OpenMP wait policy: %s; 1-minute load average at the end: %s\n",
-              tacs::bench::openMpWaitPolicy().c_str(), tacs::bench::loadAverage().c_str());
+              tacs::openMpWaitPolicy().c_str(), tacs::bench::loadAverage().c_str());
   std::printf("threads: %d (machine: %d hardware threads; PCL's GICP is single-threaded)\n\n",
               threads, omp_get_num_procs());
   printRows(rows, truth);

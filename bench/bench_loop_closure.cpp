@@ -264,7 +264,7 @@ std::vector<std::string> defaultWorlds() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  tacs::bench::setUpProcess(argv);
+  tacs::setUpProcess(argv);
   std::vector<std::string> worlds;
   double spacing = 0.5, drift_scale = 1.0;
   uint64_t seed = 7;
@@ -297,7 +297,7 @@ int main(int argc, char** argv) {
       "Loop detection on simulated worlds: keyframe every %.2f m, drift scale %.2f, seed "
       "%llu; OpenMP wait policy %s\n\n",
       spacing, drift_scale, static_cast<unsigned long long>(seed),
-      tacs::bench::openMpWaitPolicy().c_str());
+      tacs::openMpWaitPolicy().c_str());
   std::printf(
       "| world | method | N_loop | PR_loop | coarse / fine | t_LD ms | detections | "
       "ms/detection | GICP runs |\n|---|---|---|---|---|---|---|---|---|\n");

@@ -35,7 +35,7 @@ tacs::Pose3 truePose(double t) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  tacs::bench::setUpProcess(argv);
+  tacs::setUpProcess(argv);
   int scans = 60;
   tacs::OdometryConfig config;
   for (int i = 1; i < argc; ++i) {
@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
       scans, double(points) / scans, tacs::resolveThreads(config.gicp.num_threads),
       omp_get_num_procs());
   std::printf("OpenMP wait policy: %s; 1-minute load average at the end: %s\n\n",
-              tacs::bench::openMpWaitPolicy().c_str(), tacs::bench::loadAverage().c_str());
+              tacs::openMpWaitPolicy().c_str(), tacs::bench::loadAverage().c_str());
   std::printf(
       "| scans/s | mean ms/scan | median | max | GICP ms/scan | keyframes | failed | "
       "final drift (cm) | final rot. drift (deg) |\n|---|---|---|---|---|---|---|---|---|\n");

@@ -54,7 +54,7 @@ const tacs::StampedPose& nearest(const tacs::Trajectory& ref, double stamp) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  tacs::bench::setUpProcess(argv);
+  tacs::setUpProcess(argv);
   std::string data_dir, config_path;
   int every = 1;
   bool steps = false;
@@ -124,7 +124,7 @@ int main(int argc, char** argv) {
                 ate.rmse, ate.max, tacs::pathLength(reference), sum / times.size(),
                 times[times.size() / 2], times.back());
     std::printf("load average %s, OMP_WAIT_POLICY %s\n", tacs::bench::loadAverage().c_str(),
-                tacs::bench::openMpWaitPolicy().c_str());
+                tacs::openMpWaitPolicy().c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

@@ -205,7 +205,7 @@ std::vector<std::vector<tacs::RoomNode>> runWorld(const std::string& path, const
 }  // namespace
 
 int main(int argc, char** argv) {
-  tacs::bench::setUpProcess(argv);
+  tacs::setUpProcess(argv);
   Args args;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];

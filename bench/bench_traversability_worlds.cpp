@@ -135,7 +135,7 @@ WorldScore runWorld(const std::string& path, const tacs::bench::WorldsArgs& args
 }  // namespace
 
 int main(int argc, char** argv) {
-  tacs::bench::setUpProcess(argv);
+  tacs::setUpProcess(argv);
   tacs::bench::WorldsArgs args;
   size_t every = 5;
   std::vector<char*> rest = {argv[0]};
@@ -154,7 +154,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::printf("Traversability on the simulated worlds, every %zu-th scan; load %s, OpenMP %s\n\n",
-              every, tacs::bench::loadAverage().c_str(), tacs::bench::openMpWaitPolicy().c_str());
+              every, tacs::bench::loadAverage().c_str(), tacs::openMpWaitPolicy().c_str());
   std::printf(
       "| world | scans | ground P | ground R | R level | ms/scan | traversable map nodes | over "
       "the void | > 0.2 m into the void |\n|---|---|---|---|---|---|---|---|---|\n");

@@ -338,7 +338,7 @@ WorldScore runWorld(const std::string& path, const tacs::bench::WorldsArgs& args
 }  // namespace
 
 int main(int argc, char** argv) {
-  tacs::bench::setUpProcess(argv);
+  tacs::setUpProcess(argv);
   tacs::bench::WorldsArgs args;
   const char* usage =
       "Usage: bench_walls_worlds [--worlds DIR] [--world NAME|FILE]... [--config YAML] "

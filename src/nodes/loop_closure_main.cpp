@@ -1,24 +1,9 @@
 // loop_closure node (see include/tacs_graphs/ros/loop_closure_node.h).
-#include <ros/ros.h>
-
-#include "tacs_graphs/common/config.h"
-#include "tacs_graphs/common/heap.h"
 #include "tacs_graphs/ros/loop_closure_node.h"
 #include "tacs_graphs/ros/node_runner.h"
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "loop_closure", ros::init_options::NoSigintHandler);
-  tacs::installStopHandler();
-  tacs::retainFreedHeapMemory();
-  ros::NodeHandle nh;
-  ros::NodeHandle pnh("~");
-  try {
-    tacs::LoopClosureNode node(nh, pnh);
-    tacs::spinUntilStopped();
-    node.shutdown();
-  } catch (const tacs::ConfigError& e) {
-    ROS_FATAL_STREAM("loop_closure: bad configuration: " << e.what());
-    return 1;
-  }
-  return 0;
+  tacs::NodeHooks<tacs::LoopClosureNode> hooks;
+  hooks.on_stop = [](tacs::LoopClosureNode& node) { node.shutdown(); };
+  return tacs::runNode(argc, argv, "loop_closure", hooks);
 }

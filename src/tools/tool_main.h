@@ -6,13 +6,13 @@
 #include <iostream>
 #include <string>
 
-#include "tacs_graphs/common/heap.h"
+#include "tacs_graphs/common/process_setup.h"
 
 namespace tacs::tools {
 
 template <class Parse, class Run, class Usage>
 int toolMain(const std::string& name, int argc, char** argv, Parse parse, Run run, Usage usage) {
-  retainFreedHeapMemory();
+  setUpProcess(argv);
   decltype(parse(argc, argv)) options;
   try {
     options = parse(argc, argv);
