@@ -23,6 +23,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <unordered_set>
 #include <utility>
 #include <vector>
@@ -66,6 +67,14 @@ class RoomMap {
   /// TACS room merging; `landmarks` give the current wall planes for the merged room's centre.
   RoomAssociation addObservation(const RoomObservation& observation,
                                  const std::map<uint32_t, WallLandmark>& landmarks);
+
+  /// A free-space region only free-standing furniture bounds (an aisle between racks, whose faces
+  /// bound no room: rooms/room_bounds.h) joins the mapped room it touches along most cells (at
+  /// least 3 cells of merging.overlap_cell in or next to the room's) among those whose wall pairs
+  /// enclose 80 % of it: its free space and keyframes become the room's, the room keeps its
+  /// walls. Nothing when no room qualifies.
+  std::optional<RoomAssociation> addUnbounded(const RoomObservation& region,
+                                              const std::map<uint32_t, WallLandmark>& landmarks);
 
   /// S-Graphs+ style association by 2D centre distance (the voxel baseline).
   RoomAssociation addByCenterDistance(const RoomObservation& observation,

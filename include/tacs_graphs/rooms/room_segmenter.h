@@ -84,6 +84,9 @@ class RoomSegmenter {
                  const DominantAxes& axes, RoomSegmentationResult* result);
   void clusterVoxels(const WallMap& walls, const DominantAxes& axes,
                      RoomSegmentationResult* result);
+  /// Joins the kept regions that only free-standing furniture bounds to the rooms they open into
+  /// (RoomMap::addUnbounded), once such a room is mapped.
+  void joinUnboundedRegions(const WallMap& walls, RoomSegmentationResult* result);
 
   RoomsConfig config_;
   DominantAxesConfig axes_config_;
@@ -91,6 +94,7 @@ class RoomSegmenter {
   TacsFreeSpace tacs_;
   VoxelFreeSpace voxel_;
   RoomMap room_map_;
+  std::vector<RoomObservation> unbounded_;  // regions waiting for the room they open into
   int keyframes_since_clustering_ = 0;
 };
 

@@ -128,6 +128,14 @@ struct RoomExtractionConfig {
   int min_free_space_points = 30;
   /// Share of the free-space points that must lie between a pair of facing walls [-].
   double min_inside_share = 0.6;
+  /// Method "tacs": a plane that is no wall bounds a room only when an end of it lies within this
+  /// distance of a wall or of a plane anchored so; free-standing furniture bounds none (open-plan
+  /// halls, rooms/room_bounds.h). 0: every plane may bound a room, as the voxel baseline keeps
+  /// [m].
+  double anchor_distance = 0.5;
+  /// Method "tacs": a wall-shaped plane whose top is more than this below the tallest wall's has
+  /// furniture height and, like furniture, bounds a room only when anchored [m].
+  double wall_top_margin = 1.5;
 
   template <class V>
   void visit(V& v) {
@@ -138,6 +146,8 @@ struct RoomExtractionConfig {
     v("min_width_m", min_width);
     v("min_free_space_points", min_free_space_points);
     v("min_inside_share", min_inside_share);
+    v("anchor_distance_m", anchor_distance);
+    v("wall_top_margin_m", wall_top_margin);
   }
   void validate() const;
 };

@@ -36,7 +36,8 @@ struct WallNode {
   std::array<double, 2> z_range = {0.0, 0.0};
   /// False for a plane landmark that is no wall of the building: a surface the sensor saw over
   /// (cabinet, shelf, half wall) or one shorter than a wall (pillar face, box side). It still
-  /// constrains the poses and may bound a room.
+  /// constrains the poses, and bounds a room when it is anchored to the walls
+  /// (rooms/room_bounds.h).
   bool is_wall = true;
 };
 

@@ -12,6 +12,8 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <map>
+#include <optional>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -124,6 +126,13 @@ class WallMap {
   /// min_wall_observations times, not isSeenOver() and not standsBeforeATallerWall().
   bool isWall(uint32_t id) const;
 
+  /// True when nothing marks the landmark as furniture: at least min_wall_length long, not
+  /// isSeenOver() and not standsBeforeATallerWall(). isWall() also asks for enough observations;
+  /// this does not, so a wall seen from few keyframes yet already anchors (rooms/room_bounds.h).
+  /// In a mirror (setLandmarks with wall_ids) a landmark that is no wall although long and
+  /// observed enough is furniture.
+  bool hasWallShape(uint32_t id) const;
+
   /// The landmarks that are walls (isWall()).
   std::map<uint32_t, WallLandmark> walls() const;
 
@@ -138,8 +147,11 @@ class WallMap {
   const WallAssociationConfig& config() const { return config_; }
 
   /// Replaces every landmark with `landmarks` (ids kept; ids given later continue after the
-  /// largest). A process that does not own the backend mirrors its wall map this way.
-  void setLandmarks(std::map<uint32_t, WallLandmark> landmarks);
+  /// largest). A process that does not own the backend mirrors its wall map this way; its
+  /// seen-over surfaces are not mirrored, so `wall_ids`, when given, are the landmarks that are
+  /// walls in the mirrored map and isWall() answers from them.
+  void setLandmarks(std::map<uint32_t, WallLandmark> landmarks,
+                    std::optional<std::set<uint32_t>> wall_ids = std::nullopt);
 
  private:
   /// True when a wall (a landmark at least min_wall_length long, across the line) meets the line
@@ -150,12 +162,14 @@ class WallMap {
   WallAssociationConfig config_;
   std::map<uint32_t, WallLandmark> landmarks_;
   std::vector<WallLandmark> seen_over_;
+  std::optional<std::set<uint32_t>> mirrored_walls_;  // setLandmarks' wall_ids
   uint32_t next_id_ = 0;
 };
 
 /// The walls of a scene graph (the backend's optimised landmarks) as a WallMap with the same
 /// landmark ids, so that rooms extracted from it name the backend's walls. `observations` gives
-/// the observation count of each wall (1 when absent); the inlier weight is unknown (0).
+/// the observation count of each wall (1 when absent); the inlier weight is unknown (0). isWall()
+/// is the graph's WallNode::is_wall.
 WallMap wallMapFromSceneGraph(const SceneGraph& graph,
                               const std::map<uint32_t, uint32_t>& observations = {},
                               const WallAssociationConfig& config = {});

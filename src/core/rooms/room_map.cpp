@@ -1,6 +1,7 @@
 #include "tacs_graphs/rooms/room_map.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -8,6 +9,37 @@
 namespace tacs {
 
 namespace {
+
+// A region joins a room it touches along at least this many of its cells (0.4 m each by default:
+// an aisle's mouth) [-].
+constexpr size_t kMinContactCells = 3;
+// ... and whose wall pairs enclose at least this share of its points [-].
+constexpr double kMinEnclosedShare = 0.8;
+
+// Share of `pts` between the room's facing walls, on every axis it has a pair on.
+double shareWithinWalls(const RoomObservation& room, const std::vector<Eigen::Vector3d>& pts,
+                        const std::map<uint32_t, WallLandmark>& landmarks) {
+  if (pts.empty()) return 0.0;
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> limits;  // (axis, (low, high))
+  for (int pair = 0; pair < 2; ++pair) {
+    const int lo = room.walls[2 * pair], hi = room.walls[2 * pair + 1];
+    const auto a = landmarks.find(static_cast<uint32_t>(lo));
+    const auto b = landmarks.find(static_cast<uint32_t>(hi));
+    if (lo < 0 || hi < 0 || a == landmarks.end() || b == landmarks.end()) continue;
+    const Eigen::Vector2d axis = pair == 0 ? room.xAxis() : room.yAxis();
+    const double u0 = a->second.midpoint().dot(axis), u1 = b->second.midpoint().dot(axis);
+    limits.emplace_back(axis, Eigen::Vector2d(std::min(u0, u1), std::max(u0, u1)));
+  }
+  if (limits.empty()) return 0.0;
+  size_t inside = 0;
+  for (const auto& p : pts) {
+    inside += std::all_of(limits.begin(), limits.end(), [&](const auto& l) {
+      const double u = p.template head<2>().dot(l.first);
+      return u >= l.second.x() && u <= l.second.y();
+    });
+  }
+  return static_cast<double>(inside) / pts.size();
+}
 
 int64_t cellKey(const Eigen::Vector3d& p, double cell) {
   const int64_t ix = static_cast<int64_t>(std::floor(p.x() / cell));
@@ -218,6 +250,50 @@ RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
     }
   }
   RoomAssociation out = mergeOrCreate(best, observation, /*union_free_space=*/true, landmarks);
+  absorbNestedRooms(landmarks, &out);
+  return out;
+}
+
+std::optional<RoomAssociation> RoomMap::addUnbounded(
+    const RoomObservation& region, const std::map<uint32_t, WallLandmark>& landmarks) {
+  remember(landmarks);
+  // The region's cells with their 8 neighbours: a cell of a room among them is a contact.
+  std::vector<std::array<int64_t, 9>> neighbourhoods;
+  neighbourhoods.reserve(region.free_space.size());
+  std::unordered_set<int64_t> seen;
+  for (const auto& p : region.free_space) {
+    if (!seen.insert(cellKey(p, config_.overlap_cell)).second) continue;
+    std::array<int64_t, 9> keys;
+    int k = 0;
+    for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        keys[k++] =
+            cellKey(p + Eigen::Vector3d(dx, dy, 0.0) * config_.overlap_cell, config_.overlap_cell);
+      }
+    }
+    neighbourhoods.push_back(keys);
+  }
+  MappedRoom* best = nullptr;
+  size_t best_contacts = kMinContactCells - 1;
+  for (auto& [id, m] : rooms_) {
+    // The room's walls must enclose the region (an office it touches through its door does not).
+    if (shareWithinWalls(m.room, region.free_space, landmarks) < kMinEnclosedShare) continue;
+    size_t contacts = 0;
+    for (const auto& keys : neighbourhoods) {
+      contacts += std::any_of(keys.begin(), keys.end(),
+                              [&](int64_t key) { return m.cells.count(key) > 0; });
+    }
+    if (contacts > best_contacts) {
+      best_contacts = contacts;
+      best = &m;
+    }
+  }
+  if (!best) return std::nullopt;
+  RoomObservation joined = region;
+  joined.walls = {-1, -1, -1, -1};  // the room keeps its own
+  joined.axes_yaw = best->room.axes_yaw;
+  RoomAssociation out;
+  mergeInto(best, joined, /*union_free_space=*/true, landmarks, &out);
   absorbNestedRooms(landmarks, &out);
   return out;
 }

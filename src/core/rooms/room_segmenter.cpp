@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "tacs_graphs/common/timing.h"
+#include "tacs_graphs/rooms/room_bounds.h"
 
 namespace tacs {
 
@@ -35,7 +36,15 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
     result->rejected.push_back("building axes unknown (too few walls)");
     return;
   }
-  RoomExtractionResult extracted = extractRoom(points, walls.landmarks(), axes, config_.extraction);
+  // Free-standing furniture bounds no room in the paper's method (rooms/room_bounds.h); the voxel
+  // baseline keeps every plane, as S-Graphs+ does.
+  const bool anchored_only =
+      config_.method == RoomMethod::kTacs && config_.extraction.anchor_distance > 0.0;
+  const std::map<uint32_t, WallLandmark> bounding =
+      anchored_only ? roomBoundingPlanes(walls, config_.extraction.anchor_distance,
+                                         config_.extraction.wall_top_margin)
+                    : walls.landmarks();
+  RoomExtractionResult extracted = extractRoom(points, bounding, axes, config_.extraction);
   // A TACS region that ran through a doorway unnoticed holds two mapped rooms a wall separates;
   // merging would fold them into one.
   const auto spans_rooms = [&](const RoomExtractionResult& r) {
@@ -56,7 +65,7 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
       if (close) near.push_back(p);
     }
     if (near.size() < points.size()) {
-      RoomExtractionResult retried = extractRoom(near, walls.landmarks(), axes, config_.extraction);
+      RoomExtractionResult retried = extractRoom(near, bounding, axes, config_.extraction);
       if (retried.found && !spans_rooms(retried)) {
         extracted = std::move(retried);
         spans = false;
@@ -64,6 +73,19 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
     }
   }
   if (!extracted.found) {
+    // A region only free-standing furniture bounds (an aisle between racks) is part of the room
+    // it opens into, mapped from where that room's walls were seen.
+    if (anchored_only && bounding.size() < walls.landmarks().size() &&
+        extractRoom(points, walls.landmarks(), axes, config_.extraction).found) {
+      RoomObservation region;
+      region.free_space = std::move(points);
+      region.keyframe_ids = std::move(keyframe_ids);
+      // The room it opens into may be mapped later (its walls seen from elsewhere): kept until
+      // then.
+      unbounded_.push_back(std::move(region));
+      joinUnboundedRegions(walls, result);
+      return;
+    }
     result->rejected.push_back(extracted.reason);
     return;
   }
@@ -80,6 +102,19 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
                                 : room_map_.addObservation(extracted.room, walls.landmarks());
   result->observations.push_back(std::move(extracted.room));
   result->associations.push_back(a);
+  if (!unbounded_.empty()) joinUnboundedRegions(walls, result);
+}
+
+void RoomSegmenter::joinUnboundedRegions(const WallMap& walls, RoomSegmentationResult* result) {
+  for (auto it = unbounded_.begin(); it != unbounded_.end();) {
+    if (auto joined = room_map_.addUnbounded(*it, walls.landmarks())) {
+      result->observations.push_back(std::move(*it));
+      result->associations.push_back(std::move(*joined));
+      it = unbounded_.erase(it);
+    } else {
+      ++it;
+    }
+  }
 }
 
 void RoomSegmenter::clusterVoxels(const WallMap& walls, const DominantAxes& axes,

@@ -44,6 +44,8 @@ void RoomExtractionConfig::validate() const {
   requireConfig(min_free_space_points >= 1, p + "min_free_space_points", "must be >= 1");
   requireConfig(min_inside_share >= 0.0 && min_inside_share <= 1.0, p + "min_inside_share",
                 "must be in [0, 1]");
+  requireConfig(anchor_distance >= 0.0, p + "anchor_distance_m", "must be >= 0");
+  requireConfig(wall_top_margin >= 0.0, p + "wall_top_margin_m", "must be >= 0");
 }
 
 void RoomMergingConfig::validate() const {

@@ -255,9 +255,21 @@ bool WallMap::standsBeforeATallerWall(uint32_t id) const {
 
 bool WallMap::isWall(uint32_t id) const {
   const auto it = landmarks_.find(id);
+  if (mirrored_walls_) return it != landmarks_.end() && mirrored_walls_->count(id) > 0;
   return it != landmarks_.end() && it->second.length() >= config_.min_wall_length &&
          it->second.observations >= static_cast<uint32_t>(config_.min_wall_observations) &&
          !isSeenOver(id) && !standsBeforeATallerWall(id);
+}
+
+bool WallMap::hasWallShape(uint32_t id) const {
+  const auto it = landmarks_.find(id);
+  if (it == landmarks_.end() || it->second.length() < config_.min_wall_length) return false;
+  if (mirrored_walls_) {
+    const bool observed_enough =
+        it->second.observations >= static_cast<uint32_t>(config_.min_wall_observations);
+    return mirrored_walls_->count(id) > 0 || !observed_enough;
+  }
+  return !isSeenOver(id) && !standsBeforeATallerWall(id);
 }
 
 std::map<uint32_t, WallLandmark> WallMap::walls() const {
@@ -339,8 +351,10 @@ void WallMap::updateLandmarkPlane(uint32_t id, const Eigen::Vector3d& normal, do
   setExtent(&w, ends);
 }
 
-void WallMap::setLandmarks(std::map<uint32_t, WallLandmark> landmarks) {
+void WallMap::setLandmarks(std::map<uint32_t, WallLandmark> landmarks,
+                           std::optional<std::set<uint32_t>> wall_ids) {
   landmarks_ = std::move(landmarks);
+  mirrored_walls_ = std::move(wall_ids);
   next_id_ = landmarks_.empty() ? 0 : landmarks_.rbegin()->first + 1;
 }
 
@@ -348,7 +362,9 @@ WallMap wallMapFromSceneGraph(const SceneGraph& graph,
                               const std::map<uint32_t, uint32_t>& observations,
                               const WallAssociationConfig& config) {
   std::map<uint32_t, WallLandmark> landmarks;
+  std::set<uint32_t> wall_ids;
   for (const auto& [id, wall] : graph.walls) {
+    if (wall.is_wall) wall_ids.insert(id);
     WallLandmark& lm = landmarks[id];
     lm.id = id;
     lm.normal = wall.normal.normalized();
@@ -362,7 +378,7 @@ WallMap wallMapFromSceneGraph(const SceneGraph& graph,
     lm.observations = count == observations.end() ? 1 : std::max<uint32_t>(1, count->second);
   }
   WallMap map(config);
-  map.setLandmarks(std::move(landmarks));
+  map.setLandmarks(std::move(landmarks), std::move(wall_ids));
   return map;
 }
 

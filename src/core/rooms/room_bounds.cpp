@@ -1,0 +1,69 @@
+#include "tacs_graphs/rooms/room_bounds.h"
+
+#include <algorithm>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace tacs {
+namespace {
+
+// Distance (xy) from p to the segment a-b.
+double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                         const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).norm();
+}
+
+bool meets(const WallLandmark& plane, const WallLandmark& anchored, double distance) {
+  return std::any_of(
+      std::begin(plane.endpoints), std::end(plane.endpoints), [&](const Eigen::Vector2d& end) {
+        return distanceToSegment(end, anchored.endpoints[0], anchored.endpoints[1]) <= distance;
+      });
+}
+
+}  // namespace
+
+std::map<uint32_t, WallLandmark> roomBoundingPlanes(const WallMap& walls, double anchor_distance,
+                                                    double top_margin) {
+  const std::map<uint32_t, WallLandmark>& all = walls.landmarks();
+  if (anchor_distance <= 0.0) return all;
+  // Rack faces seen only from their aisle are never seen over, so they pass for walls by their
+  // shape; their top, far below the hall's walls, gives them away.
+  double tallest = -std::numeric_limits<double>::infinity();
+  for (const auto& [id, plane] : all) {
+    if (walls.hasWallShape(id)) tallest = std::max(tallest, plane.mean_top);
+  }
+  std::map<uint32_t, WallLandmark> bounding;
+  std::vector<std::pair<uint32_t, const WallLandmark*>> loose;  // not anchored yet
+  for (const auto& [id, plane] : all) {
+    if (walls.hasWallShape(id) && plane.mean_top >= tallest - top_margin) {
+      bounding.emplace_hint(bounding.end(), id, plane);
+    } else {
+      loose.emplace_back(id, &plane);
+    }
+  }
+  // Anchoring spreads along chains of planes (partition -> partition -> wall): repeat until no
+  // loose plane meets an anchored one.
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (auto it = loose.begin(); it != loose.end();) {
+      const WallLandmark& plane = *it->second;
+      const bool anchored = std::any_of(bounding.begin(), bounding.end(), [&](const auto& entry) {
+        return meets(plane, entry.second, anchor_distance);
+      });
+      if (anchored) {
+        bounding.emplace(it->first, plane);
+        it = loose.erase(it);
+        grew = true;
+      } else {
+        ++it;
+      }
+    }
+  }
+  return bounding;
+}
+
+}  // namespace tacs

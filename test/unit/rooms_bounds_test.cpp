@@ -1,0 +1,155 @@
+// Which planes bound rooms (rooms/room_bounds.h): walls and planes anchored to them do,
+// free-standing furniture (rack rows in an open-plan hall) does not.
+#include <gtest/gtest.h>
+
+#include "tacs_graphs/rooms/room_bounds.h"
+#include "tacs_graphs/rooms/room_extraction.h"
+#include "tacs_graphs/rooms/room_map.h"
+#include "tacs_graphs/walls/dominant_axes.h"
+
+namespace tacs {
+namespace {
+
+// A vertical face from a to b (xy) whose normal is `normal` (xy, unit).
+WallLandmark face(uint32_t id, Eigen::Vector2d a, Eigen::Vector2d b, Eigen::Vector2d normal,
+                  double top = 2.5) {
+  WallLandmark w;
+  w.id = id;
+  w.normal = Eigen::Vector3d(normal.x(), normal.y(), 0.0);
+  w.d = -normal.dot(a);
+  const Eigen::Vector2d axis = wallAxis(w.normal);
+  w.endpoints[0] = (b - a).dot(axis) > 0 ? a : b;
+  w.endpoints[1] = (b - a).dot(axis) > 0 ? b : a;
+  w.z_max = top;
+  w.mean_top = top;
+  w.observations = 5;
+  return w;
+}
+
+// A 20 x 10 m hall with 8 m walls (0-3, facing in), a row of 2.5 m racks from x 5 to 15 whose
+// faces at y 4 and y 6.5 face the aisle between them (4, 5), an office partition meeting the
+// west wall (6) and a second partition meeting that one (7). The walls are the hall's four faces
+// and rack face 4, which was never seen over (its top gives it away).
+WallMap hall() {
+  const Eigen::Vector2d px(1, 0), py(0, 1);
+  std::map<uint32_t, WallLandmark> lm;
+  lm[0] = face(0, {0, 0}, {20, 0}, py, 8.0);
+  lm[1] = face(1, {0, 10}, {20, 10}, -py, 8.0);
+  lm[2] = face(2, {0, 0}, {0, 10}, px, 8.0);
+  lm[3] = face(3, {20, 0}, {20, 10}, -px, 8.0);
+  lm[4] = face(4, {5, 4}, {15, 4}, py);
+  lm[5] = face(5, {5, 6.5}, {15, 6.5}, -py);
+  lm[6] = face(6, {0.1, 8}, {3, 8}, -py);
+  lm[7] = face(7, {3.2, 8}, {3.2, 10}, px);
+  WallMap map;
+  map.setLandmarks(std::move(lm), std::set<uint32_t>{0, 1, 2, 3, 4});
+  return map;
+}
+
+std::vector<Eigen::Vector3d> grid(double x0, double x1, double y0, double y1) {
+  std::vector<Eigen::Vector3d> out;
+  for (double x = x0; x <= x1 + 1e-9; x += 0.2) {
+    for (double y = y0; y <= y1 + 1e-9; y += 0.2) out.emplace_back(x, y, 0.0);
+  }
+  return out;
+}
+
+TEST(RoomBoundingPlanes, FreeStandingFacesBoundNoRoomAnchoredOnesDo) {
+  const auto bounding = roomBoundingPlanes(hall(), 0.5, 1.5);
+  for (uint32_t id : {0u, 1u, 2u, 3u}) EXPECT_EQ(bounding.count(id), 1u) << "wall " << id;
+  EXPECT_EQ(bounding.count(4), 0u) << "rack face, wall-shaped but 5.5 m lower than the walls";
+  EXPECT_EQ(bounding.count(5), 0u) << "rack face";
+  EXPECT_EQ(bounding.count(6), 1u) << "partition meeting the west wall";
+  EXPECT_EQ(bounding.count(7), 1u) << "partition meeting the anchored partition";
+}
+
+TEST(RoomBoundingPlanes, AWallShapedPlaneWithinTheTopMarginIsAWall) {
+  EXPECT_EQ(roomBoundingPlanes(hall(), 0.5, 6.0).count(4), 1u);
+}
+
+TEST(RoomBoundingPlanes, ZeroAnchorDistanceKeepsEveryPlane) {
+  const WallMap map = hall();
+  EXPECT_EQ(roomBoundingPlanes(map, 0.0, 1.5).size(), map.landmarks().size());
+  // A plane further than the anchor distance from every anchored one stays loose.
+  EXPECT_EQ(roomBoundingPlanes(map, 0.05, 1.5).count(6), 0u);
+}
+
+TEST(RoomBoundingPlanes, AnAisleBetweenFreeStandingRacksIsNoCorridorOfItsOwn) {
+  const WallMap map = hall();
+  const DominantAxes axes = estimateDominantAxes(map);
+  ASSERT_TRUE(axes.valid);
+  const auto aisle = grid(5.0, 15.0, 4.2, 6.3);
+  // Every plane may bound: the two rack faces make the aisle a corridor.
+  const RoomExtractionResult with_racks = extractRoom(aisle, map.landmarks(), axes, {});
+  ASSERT_TRUE(with_racks.found) << with_racks.reason;
+  EXPECT_EQ(with_racks.room.kind, RoomKind::kCorridor);
+  // Racks bound nothing: the aisle alone is bounded by no facing walls, so it makes no room; the
+  // hall's region around it does, bounded by the hall's walls.
+  const auto bounding = roomBoundingPlanes(map, 0.5, 1.5);
+  EXPECT_FALSE(extractRoom(aisle, bounding, axes, {}).found);
+  std::vector<Eigen::Vector3d> hall_floor;
+  for (const auto& p : grid(0.2, 19.8, 0.2, 9.8)) {
+    const bool in_racks = p.x() >= 5.0 && p.x() <= 15.0 && p.y() > 3.9 && p.y() < 4.2;
+    if (!in_racks) hall_floor.push_back(p);
+  }
+  const RoomExtractionResult whole = extractRoom(hall_floor, bounding, axes, {});
+  ASSERT_TRUE(whole.found) << whole.reason;
+  EXPECT_EQ(whole.room.kind, RoomKind::kRoom);
+  EXPECT_NEAR(whole.room.center.x(), 10.0, 1e-6);
+  EXPECT_NEAR(whole.room.center.y(), 5.0, 1e-6);
+}
+
+TEST(RoomMapAddUnbounded, AnAisleJoinsTheHallItOpensInto) {
+  const WallMap map = hall();
+  const DominantAxes axes = estimateDominantAxes(map);
+  const auto bounding = roomBoundingPlanes(map, 0.5, 1.5);
+  // The hall mapped from its open floor west of the racks.
+  RoomExtractionResult west = extractRoom(grid(0.2, 9.0, 0.2, 9.8), bounding, axes, {});
+  ASSERT_TRUE(west.found) << west.reason;
+  west.room.keyframe_ids = {1, 2};
+  RoomMap rooms;
+  const RoomAssociation created = rooms.addObservation(west.room, map.landmarks());
+  ASSERT_TRUE(created.created);
+  const size_t cells_before = rooms.rooms().at(created.room_id).cells.size();
+  // An aisle region reaching back into that floor: half of it lies in the mapped hall.
+  RoomObservation aisle;
+  aisle.free_space = grid(1.0, 15.0, 4.2, 6.3);
+  aisle.keyframe_ids = {3};
+  const auto joined = rooms.addUnbounded(aisle, map.landmarks());
+  ASSERT_TRUE(joined.has_value());
+  EXPECT_EQ(joined->room_id, created.room_id);
+  EXPECT_FALSE(joined->created);
+  const MappedRoom& hall_room = rooms.rooms().at(created.room_id);
+  EXPECT_GT(hall_room.cells.size(), cells_before);
+  EXPECT_EQ(hall_room.room.walls, west.room.walls);  // the aisle brings no walls
+  EXPECT_EQ(hall_room.room.keyframe_ids, (std::vector<uint32_t>{1, 2, 3}));
+  // A region mostly outside every mapped room joins none.
+  RoomObservation far;
+  far.free_space = grid(12.0, 19.8, 0.2, 3.0);
+  EXPECT_FALSE(rooms.addUnbounded(far, map.landmarks()).has_value());
+}
+
+TEST(WallMapMirror, IsWallFollowsTheSceneGraphsFlag) {
+  SceneGraph graph;
+  WallNode wall;
+  wall.normal = Eigen::Vector3d::UnitX();
+  wall.endpoints[0] = Eigen::Vector2d(0, 0);
+  wall.endpoints[1] = Eigen::Vector2d(0, 5);
+  wall.z_range = {0.0, 2.5};
+  graph.walls[1] = wall;
+  wall.is_wall = false;  // e.g. seen over: the mirror cannot tell, it has no seen-over surfaces
+  graph.walls[2] = wall;
+  graph.walls[3] = wall;  // no wall yet: seen from one keyframe only
+  const WallMap mirror = wallMapFromSceneGraph(graph, {{1, 5}, {2, 5}, {3, 1}});
+  EXPECT_TRUE(mirror.isWall(1));
+  EXPECT_FALSE(mirror.isWall(2));
+  EXPECT_FALSE(mirror.isWall(3));
+  EXPECT_FALSE(mirror.isWall(4));  // unknown
+  // Long and observed enough, yet no wall: furniture. Observed too little: shaped like a wall.
+  EXPECT_TRUE(mirror.hasWallShape(1));
+  EXPECT_FALSE(mirror.hasWallShape(2));
+  EXPECT_TRUE(mirror.hasWallShape(3));
+}
+
+}  // namespace
+}  // namespace tacs
