@@ -31,18 +31,24 @@ std::map<uint32_t, WallLandmark> roomBoundingPlanes(const WallMap& walls, double
   const std::map<uint32_t, WallLandmark>& all = walls.landmarks();
   if (anchor_distance <= 0.0) return all;
   // Rack faces seen only from their aisle are never seen over, so they pass for walls by their
-  // shape; their top, far below the hall's walls, gives them away.
+  // shape; their top, far below the hall's walls, gives them away. (hasWallShape scans the other
+  // landmarks: asked once per plane.)
+  std::vector<std::pair<uint32_t, const WallLandmark*>> shaped, loose;  // loose: not anchored yet
   double tallest = -std::numeric_limits<double>::infinity();
   for (const auto& [id, plane] : all) {
-    if (walls.hasWallShape(id)) tallest = std::max(tallest, plane.mean_top);
-  }
-  std::map<uint32_t, WallLandmark> bounding;
-  std::vector<std::pair<uint32_t, const WallLandmark*>> loose;  // not anchored yet
-  for (const auto& [id, plane] : all) {
-    if (walls.hasWallShape(id) && plane.mean_top >= tallest - top_margin) {
-      bounding.emplace_hint(bounding.end(), id, plane);
+    if (walls.hasWallShape(id)) {
+      shaped.emplace_back(id, &plane);
+      tallest = std::max(tallest, plane.mean_top);
     } else {
       loose.emplace_back(id, &plane);
+    }
+  }
+  std::map<uint32_t, WallLandmark> bounding;
+  for (const auto& [id, plane] : shaped) {
+    if (plane->mean_top >= tallest - top_margin) {
+      bounding.emplace(id, *plane);
+    } else {
+      loose.emplace_back(id, plane);
     }
   }
   // Anchoring spreads along chains of planes (partition -> partition -> wall): repeat until no

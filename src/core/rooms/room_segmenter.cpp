@@ -40,10 +40,11 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
   // baseline keeps every plane, as S-Graphs+ does.
   const bool anchored_only =
       config_.method == RoomMethod::kTacs && config_.extraction.anchor_distance > 0.0;
-  const std::map<uint32_t, WallLandmark> bounding =
+  const std::map<uint32_t, WallLandmark> anchored =
       anchored_only ? roomBoundingPlanes(walls, config_.extraction.anchor_distance,
                                          config_.extraction.wall_top_margin)
-                    : walls.landmarks();
+                    : std::map<uint32_t, WallLandmark>{};
+  const std::map<uint32_t, WallLandmark>& bounding = anchored_only ? anchored : walls.landmarks();
   RoomExtractionResult extracted = extractRoom(points, bounding, axes, config_.extraction);
   // A TACS region that ran through a doorway unnoticed holds two mapped rooms a wall separates;
   // merging would fold them into one.
