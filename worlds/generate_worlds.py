@@ -88,6 +88,30 @@ class Builder:
     def polygon_room(self, rid, kind, poly):
         self.rooms.append({"id": rid, "kind": kind, "polygon": poly})
 
+    def open_floor(self, rid, x1, y1, north_rooms):
+        """The ground-truth room of the open floor of an x1 x y1 building (walls at its edges):
+        the free space inside the walls, minus the rooms along its north wall, each (x0, x1,
+        y0), returned as a polygon that keeps half a wall from every wall."""
+        h = self.t / 2
+        tops = []  # (x0, x1, top) along the north side, west to east
+        x = 0.0
+        for rx0, rx1, ry0 in sorted(north_rooms):
+            if rx0 > x:
+                tops.append((x, rx0, y1))
+            tops.append((rx0, rx1, ry0))
+            x = rx1
+        if x < x1:
+            tops.append((x, x1, y1))
+        poly = [[h, h], [x1 - h, h]]
+        for k in range(len(tops) - 1, -1, -1):  # east to west along the north side
+            a, b, top = tops[k]
+            # At a step the wall between belongs to the lower part's room: both corners keep
+            # half a wall from it on the side of the higher part.
+            east = b + h if k < len(tops) - 1 and tops[k + 1][2] > top else b - h
+            west = a - h if k > 0 and tops[k - 1][2] > top else a + h
+            poly += [[east, top - h], [west, top - h]]
+        self.polygon_room(rid, "room", poly)
+
     def box(self, cx, cy, z0, sx, sy, sz, yaw=0.0, refl=None):
         b = {"center": [cx, cy, z0 + sz / 2], "size": [sx, sy, sz], "yaw_deg": yaw}
         if refl is not None:
@@ -564,7 +588,147 @@ def warehouse():
     b.write()
 
 
+def cubicle_cluster(b, rng, x0, y0, cols=3, size=2.4):
+    """Two rows of `cols` cubicles back to back (x0..x0 + cols * size, y0..y0 + 2 * size), open
+    to the aisles on their long sides: partitions are 1.2-1.6 m high, 6 cm thick boxes (no
+    walls), each cubicle with an L-shaped desk, a monitor and a chair."""
+    x1, ym = x0 + cols * size, y0 + size
+    ph = rng.uniform(1.2, 1.6)
+    b.box((x0 + x1) / 2, ym, 0.0, x1 - x0, 0.06, ph)  # the spine
+    for k in range(cols + 1):
+        b.box(x0 + k * size, ym, 0.0, 0.06, 2 * size - 0.8, rng.uniform(1.2, 1.6))
+    for k in range(cols):
+        cx = x0 + (k + 0.5) * size
+        for side in (-1, 1):
+            near, far = ym + side * 0.05, ym + side * 0.75
+            b.table(cx - size / 2 + 0.1, min(near, far), cx + size / 2 - 0.1, max(near, far),
+                    legs=False)
+            b.box(cx - size / 2 + 0.4, ym + side * 1.0, 0.0, 0.7, 1.2, 0.75)  # the desk return
+            b.box(cx + rng.uniform(-0.5, 0.5), ym + side * 0.2, 0.75, 0.55, 0.05, 0.35)
+            b.box(cx + rng.uniform(-0.4, 0.6), ym + side * rng.uniform(0.9, 1.4), 0.0,
+                  0.55, 0.55, rng.uniform(0.9, 1.1))  # a chair
+
+
+def open_office():
+    """Open plan (issue: rooms in open-plan interiors): a 32 x 20 m office floor under a 3 m
+    ceiling. Four clusters of six cubicles with 1.2-1.6 m partitions fill the open area, a lounge
+    with low cabinets and sofas opens off it; three walled offices and a meeting room with doors
+    line the north side. Ground truth: the open area (cubicles and lounge) is one room, each
+    office and the meeting room one room."""
+    b = Builder("open_office", height=3.0, thickness=0.15)
+    h = b.t / 2
+    b.rect(0, 0, 32, 20)
+    b.floor_rect(0, 0, 32, 20)
+    for i, x0 in enumerate((0, 4, 8)):
+        b.room("office_" + "abc"[i], "room", x0, 15, x0 + 4, 20)
+        b.door('h', 15, x0 + 1.5, x0 + 2.5)
+        b.table(x0 + 0.4, 18.6, x0 + 2.4, 19.5)
+        b.box(x0 + 3.4, 17.5, 0.0, 0.5, 1.8, 1.9)  # a cabinet
+    b.room("meeting", "room", 24, 13, 32, 20)
+    b.door('v', 24, 16.4, 17.6)
+    b.table(26.0, 14.2, 30.5, 15.6)
+    for x in (26.5, 27.7, 28.9, 30.0):
+        for y in (13.7, 16.1):
+            b.box(x, y, 0.0, 0.5, 0.5, 0.95)
+    b.open_floor("open_area", 32, 20, [(0, 12, 15), (24, 32, 13)])
+    rng = random.Random(35)
+    for x0 in (3.0, 12.0):
+        for y0 in (1.5, 8.3):
+            cubicle_cluster(b, rng, x0, y0)
+    # The lounge (x 12..24, y 15..20): low cabinets, two sofas, a coffee table; printers east.
+    b.box(15.0, 19.5, 0.0, 4.0, 0.6, 1.1)
+    b.box(20.5, 19.5, 0.0, 3.0, 0.6, 1.1)
+    b.box(14.5, 18.3, 0.0, 2.2, 0.9, 0.8)
+    b.box(20.5, 18.3, 0.0, 2.2, 0.9, 0.8)
+    b.box(15.0, 16.0, 0.0, 1.2, 0.7, 0.45)
+    for y in (3.0, 6.5, 10.0):
+        b.box(31.3, y, 0.0, 0.8, 1.2, 1.3)
+    b.path([[1.5, 7.3], [21.5, 7.3], [21.5, 14.05], [2.0, 14.05], [2.0, 17.5], [2.0, 14.05],
+            [6.0, 14.05], [6.0, 17.5], [6.0, 14.05], [10.0, 14.05], [10.0, 17.5], [10.0, 14.05], [18.0, 14.05], [18.0, 17.0],
+            [27.0, 17.0], [30.8, 17.4], [22.5, 17.0], [22.5, 11.0], [22.0, 0.8], [1.5, 0.8],
+            [1.5, 7.3], [10.0, 7.3]], speed=1.0, corner=0.6)
+    b.write()
+
+
+def library_stacks():
+    """Open plan (issue: rooms in open-plan interiors): a 36 x 24 m reading hall under a 4 m
+    ceiling. Two blocks of 2.2 m double-sided book stacks (rows along y, 1.8 m aisles) with a
+    cross aisle between them fill the east half, reading tables the west half, a 1.1 m service
+    counter stands by the entrance; a group-study room and a staff office with doors in the
+    north-west corner. Ground truth: the hall (stacks, tables) is one room, each walled room one
+    room."""
+    b = Builder("library_stacks", height=4.0, thickness=0.2)
+    h = b.t / 2
+    b.rect(0, 0, 36, 24)
+    b.floor_rect(0, 0, 36, 24)
+    b.room("study", "room", 0, 18, 8, 24)
+    b.door('h', 18, 6.0, 7.2)
+    b.room("staff", "room", 8, 18, 14, 24)
+    b.door('h', 18, 9.0, 10.0)
+    b.table(1.0, 20.0, 5.0, 21.4)
+    b.table(10.0, 22.6, 13.0, 23.6)
+    b.box(13.4, 20.0, 0.0, 0.5, 1.6, 1.9)
+    b.open_floor("hall", 36, 24, [(0, 14, 18)])
+    rng = random.Random(36)
+    # Stacks: rows along y of 0.9 m sections, each a little deeper or shallower (books).
+    for y0, y1 in ((3.0, 11.1), (13.5, 21.6)):
+        for k in range(7):
+            x = 19.0 + 2.4 * k
+            y = y0
+            while y < y1 - 1e-6:
+                b.box(x, y + 0.45, 0.0, rng.uniform(0.52, 0.6), 0.88, 2.2)
+                y += 0.9
+    # Reading tables with chairs (x 3..15, y 3..15) and the counter by the entrance.
+    for tx in (3.0, 8.0):
+        for ty in (3.0, 7.0, 11.0):
+            b.table(tx, ty, tx + 3.0, ty + 1.2)
+            for cx in (tx + 0.7, tx + 2.3):
+                for cy in (ty - 0.45, ty + 1.65):
+                    b.box(cx, cy, 0.0, 0.45, 0.45, 0.9)
+    b.box(14.0, 6.0, 0.0, 0.7, 3.0, 1.1)
+    b.path([[1.5, 1.5], [16.5, 1.5], [16.5, 12.3], [35.0, 12.3], [35.0, 1.6], [20.2, 1.6],
+            [20.2, 11.8], [22.6, 11.8], [22.6, 22.8], [16.5, 22.8], [16.5, 16.5], [6.6, 16.5],
+            [6.6, 21.5], [6.6, 16.5], [9.5, 16.5], [9.5, 21.0], [9.5, 16.5], [1.5, 16.5],
+            [1.5, 1.5], [12.0, 1.5]], speed=1.0, corner=0.6)
+    b.write()
+
+
+def market_hall():
+    """Open plan (issue: rooms in open-plan interiors): a 30 x 20 m supermarket hall under a 5 m
+    roof whose 1.6 m gondola rows run both ways: along x in the west half, along y in the east
+    half, with checkout counters by the entrance and a walled storeroom (door) in the north-east
+    corner. Ground truth: the sales floor is one room, the storeroom one room."""
+    b = Builder("market_hall", height=5.0, thickness=0.2)
+    b.rect(0, 0, 30, 20)
+    b.floor_rect(0, 0, 30, 20)
+    b.room("storeroom", "room", 23, 15, 30, 20)
+    b.door('v', 23, 16.2, 17.6)
+    for k, pallet_h in enumerate((1.2, 1.6, 0.8)):
+        b.box(25.0 + 2.0 * k, 18.8, 0.0, 1.2, 1.0, pallet_h)
+    b.open_floor("sales_floor", 30, 20, [(23, 30, 15)])
+    rng = random.Random(37)
+    # Gondolas: 0.9 m deep, 1.6 m high, in 1.25 m sections (goods make each face uneven).
+    def gondola(x0, y0, along_x, sections):
+        for k in range(sections):
+            d = rng.uniform(0.84, 0.9)
+            if along_x:
+                b.box(x0 + 1.25 * (k + 0.5), y0, 0.0, 1.23, d, 1.6)
+            else:
+                b.box(x0, y0 + 1.25 * (k + 0.5), 0.0, d, 1.23, 1.6)
+    for y in (6.0, 8.8, 11.6, 14.4, 17.2):
+        gondola(2.5, y, True, 9)  # x 2.5..13.75
+    for x in (17.0, 19.8, 22.6, 25.4):
+        gondola(x, 3.5, False, 7)  # y 3.5..12.25
+    for x in (4.0, 7.0, 10.0):  # checkouts: a counter and a belt by the entrance
+        b.box(x, 2.4, 0.0, 0.8, 2.0, 0.9)
+    b.path([[1.2, 1.0], [15.0, 1.0], [15.0, 7.4], [1.2, 7.4], [1.2, 13.0], [15.0, 13.0],
+            [15.4, 18.6], [21.0, 18.6], [21.0, 16.9], [27.0, 16.9], [21.0, 16.9], [21.0, 14.3],
+            [28.8, 14.3], [28.8, 1.8], [24.0, 1.8], [24.0, 13.3], [18.4, 13.3], [18.4, 1.0],
+            [1.2, 1.0], [1.2, 7.4]], speed=1.0, corner=0.6)
+    b.write()
+
 if __name__ == "__main__":
     for fn in (smoke, lab_room, corridor_loop, long_corridor, large_hall, open_lobby,
-               cluttered_rooms, construction_site, legged_office, warehouse):
+               cluttered_rooms, construction_site, legged_office, warehouse, open_office,
+               library_stacks, market_hall):
         fn()

@@ -30,15 +30,15 @@ WallLandmark face(uint32_t id, Eigen::Vector2d a, Eigen::Vector2d b, Eigen::Vect
 // faces at y 4 and y 6.5 face the aisle between them (4, 5), an office partition meeting the
 // west wall (6) and a second partition meeting that one (7). The walls are the hall's four faces
 // and rack face 4, which was never seen over (its top gives it away).
-WallMap hall() {
+WallMap hall(double wall_top = 8.0, double rack_top = 2.5) {
   const Eigen::Vector2d px(1, 0), py(0, 1);
   std::map<uint32_t, WallLandmark> lm;
-  lm[0] = face(0, {0, 0}, {20, 0}, py, 8.0);
-  lm[1] = face(1, {0, 10}, {20, 10}, -py, 8.0);
-  lm[2] = face(2, {0, 0}, {0, 10}, px, 8.0);
-  lm[3] = face(3, {20, 0}, {20, 10}, -px, 8.0);
-  lm[4] = face(4, {5, 4}, {15, 4}, py);
-  lm[5] = face(5, {5, 6.5}, {15, 6.5}, -py);
+  lm[0] = face(0, {0, 0}, {20, 0}, py, wall_top);
+  lm[1] = face(1, {0, 10}, {20, 10}, -py, wall_top);
+  lm[2] = face(2, {0, 0}, {0, 10}, px, wall_top);
+  lm[3] = face(3, {20, 0}, {20, 10}, -px, wall_top);
+  lm[4] = face(4, {5, 4}, {15, 4}, py, rack_top);
+  lm[5] = face(5, {5, 6.5}, {15, 6.5}, -py, rack_top);
   lm[6] = face(6, {0.1, 8}, {3, 8}, -py);
   lm[7] = face(7, {3.2, 8}, {3.2, 10}, px);
   WallMap map;
@@ -55,7 +55,7 @@ std::vector<Eigen::Vector3d> grid(double x0, double x1, double y0, double y1) {
 }
 
 TEST(RoomBoundingPlanes, FreeStandingFacesBoundNoRoomAnchoredOnesDo) {
-  const auto bounding = roomBoundingPlanes(hall(), 0.5, 1.5);
+  const auto bounding = roomBoundingPlanes(hall(), 0.5, 1.5, 0.0);
   for (uint32_t id : {0u, 1u, 2u, 3u}) EXPECT_EQ(bounding.count(id), 1u) << "wall " << id;
   EXPECT_EQ(bounding.count(4), 0u) << "rack face, wall-shaped but 5.5 m lower than the walls";
   EXPECT_EQ(bounding.count(5), 0u) << "rack face";
@@ -64,14 +64,42 @@ TEST(RoomBoundingPlanes, FreeStandingFacesBoundNoRoomAnchoredOnesDo) {
 }
 
 TEST(RoomBoundingPlanes, AWallShapedPlaneWithinTheTopMarginIsAWall) {
-  EXPECT_EQ(roomBoundingPlanes(hall(), 0.5, 6.0).count(4), 1u);
+  EXPECT_EQ(roomBoundingPlanes(hall(), 0.5, 6.0, 0.0).count(4), 1u);
+}
+
+TEST(RoomBoundingPlanes, APlaneBelowTheTopShareOfTheTallestWallsIsFurniture) {
+  // Under a 3 m ceiling the 1.6 m rack face 4 (a cubicle partition's height) passes the 1.5 m
+  // margin, not the 0.75 share.
+  const WallMap map = hall(3.0, 1.6);
+  EXPECT_EQ(roomBoundingPlanes(map, 0.5, 1.5, 0.0).count(4), 1u);
+  const auto bounding = roomBoundingPlanes(map, 0.5, 1.5, 0.75);
+  EXPECT_EQ(bounding.count(4), 0u);
+  for (uint32_t id : {0u, 1u, 2u, 3u, 6u, 7u}) EXPECT_EQ(bounding.count(id), 1u) << id;
+}
+
+TEST(RoomExtraction, ACorridorReportsTheDistanceOfItsFacingPair) {
+  // The hall's two long walls, 10 m apart, are the only facing pair around a region between the
+  // rack rows and the east wall: a corridor 10 m wide (RoomSegmenter compares it with
+  // rooms.extraction.max_corridor_width_m).
+  const WallMap map = hall();
+  const DominantAxes axes = estimateDominantAxes(map);
+  std::map<uint32_t, WallLandmark> long_walls;
+  for (uint32_t id : {0u, 1u}) long_walls.emplace(id, map.landmarks().at(id));
+  const RoomExtractionResult wide = extractRoom(grid(15.5, 19.0, 0.2, 9.8), long_walls, axes, {});
+  ASSERT_TRUE(wide.found) << wide.reason;
+  EXPECT_EQ(wide.room.kind, RoomKind::kCorridor);
+  EXPECT_NEAR(wide.corridor_width, 10.0, 1e-6);
+  // A four-wall room has none.
+  EXPECT_EQ(extractRoom(grid(0.2, 19.8, 0.2, 9.8), roomBoundingPlanes(map, 0.5, 1.5, 0.0), axes, {})
+                .corridor_width,
+            0.0);
 }
 
 TEST(RoomBoundingPlanes, ZeroAnchorDistanceKeepsEveryPlane) {
   const WallMap map = hall();
-  EXPECT_EQ(roomBoundingPlanes(map, 0.0, 1.5).size(), map.landmarks().size());
+  EXPECT_EQ(roomBoundingPlanes(map, 0.0, 1.5, 0.0).size(), map.landmarks().size());
   // A plane further than the anchor distance from every anchored one stays loose.
-  EXPECT_EQ(roomBoundingPlanes(map, 0.05, 1.5).count(6), 0u);
+  EXPECT_EQ(roomBoundingPlanes(map, 0.05, 1.5, 0.0).count(6), 0u);
 }
 
 TEST(RoomBoundingPlanes, AnAisleBetweenFreeStandingRacksIsNoCorridorOfItsOwn) {
@@ -85,7 +113,7 @@ TEST(RoomBoundingPlanes, AnAisleBetweenFreeStandingRacksIsNoCorridorOfItsOwn) {
   EXPECT_EQ(with_racks.room.kind, RoomKind::kCorridor);
   // Racks bound nothing: the aisle alone is bounded by no facing walls, so it makes no room; the
   // hall's region around it does, bounded by the hall's walls.
-  const auto bounding = roomBoundingPlanes(map, 0.5, 1.5);
+  const auto bounding = roomBoundingPlanes(map, 0.5, 1.5, 0.0);
   EXPECT_FALSE(extractRoom(aisle, bounding, axes, {}).found);
   std::vector<Eigen::Vector3d> hall_floor;
   for (const auto& p : grid(0.2, 19.8, 0.2, 9.8)) {
@@ -102,7 +130,7 @@ TEST(RoomBoundingPlanes, AnAisleBetweenFreeStandingRacksIsNoCorridorOfItsOwn) {
 TEST(RoomMapAddUnbounded, AnAisleJoinsTheHallItOpensInto) {
   const WallMap map = hall();
   const DominantAxes axes = estimateDominantAxes(map);
-  const auto bounding = roomBoundingPlanes(map, 0.5, 1.5);
+  const auto bounding = roomBoundingPlanes(map, 0.5, 1.5, 0.0);
   // The hall mapped from its open floor west of the racks.
   RoomExtractionResult west = extractRoom(grid(0.2, 9.0, 0.2, 9.8), bounding, axes, {});
   ASSERT_TRUE(west.found) << west.reason;
@@ -115,7 +143,7 @@ TEST(RoomMapAddUnbounded, AnAisleJoinsTheHallItOpensInto) {
   RoomObservation aisle;
   aisle.free_space = grid(1.0, 15.0, 4.2, 6.3);
   aisle.keyframe_ids = {3};
-  const auto joined = rooms.addUnbounded(aisle, map.landmarks());
+  const auto joined = rooms.addUnbounded(aisle, map.landmarks(), bounding);
   ASSERT_TRUE(joined.has_value());
   EXPECT_EQ(joined->room_id, created.room_id);
   EXPECT_FALSE(joined->created);
@@ -126,7 +154,41 @@ TEST(RoomMapAddUnbounded, AnAisleJoinsTheHallItOpensInto) {
   // A region mostly outside every mapped room joins none.
   RoomObservation far;
   far.free_space = grid(12.0, 19.8, 0.2, 3.0);
-  EXPECT_FALSE(rooms.addUnbounded(far, map.landmarks()).has_value());
+  EXPECT_FALSE(rooms.addUnbounded(far, map.landmarks(), bounding).has_value());
+}
+
+TEST(RoomMapAddUnbounded, ARegionAlongAWallOfTheRoomJoinsItThoughItsPairsEncloseLittle) {
+  // An L-shaped hall: mapped from its west part (x 0..8, closed above y = 6 by a storeroom's
+  // wall at x = 8), then a wide region east of it between the south wall and the storeroom's.
+  const Eigen::Vector2d px(1, 0), py(0, 1);
+  WallMap map = hall();
+  std::map<uint32_t, WallLandmark> lm = map.landmarks();
+  lm[8] = face(8, {8, 6}, {8, 10}, -px, 8.0);
+  lm[9] = face(9, {8, 6}, {20, 6}, -py, 8.0);
+  map.setLandmarks(lm, std::set<uint32_t>{0, 1, 2, 3, 8, 9});
+  RoomObservation west;
+  west.kind = RoomKind::kRoom;
+  west.walls = {2, 8, 0, 1};  // x+, x-, y+, y-
+  west.free_space = grid(0.2, 7.8, 0.2, 9.8);
+  west.keyframe_ids = {1};
+  RoomMap rooms;
+  const RoomAssociation created = rooms.addObservation(west, map.landmarks());
+  RoomObservation east;
+  east.kind = RoomKind::kCorridor;
+  east.free_space = grid(8.0, 19.8, 0.2, 5.8);
+  east.keyframe_ids = {2};
+  // Without a shared wall the west room's pairs (x 0..8) enclose too little of it.
+  EXPECT_FALSE(rooms.addUnbounded(east, map.landmarks(), {}).has_value());
+  east.walls = {-1, -1, 0, 9};  // the south wall is the west room's too
+  // ... unless a wall stands between the two (a room behind the hall's wall shares it too).
+  const auto bounding = roomBoundingPlanes(map, 0.5, 1.5, 0.0);  // the racks bound nothing
+  std::map<uint32_t, WallLandmark> separated = bounding;
+  separated[10] = face(10, {9, 0}, {9, 6}, px, 8.0);
+  EXPECT_FALSE(rooms.addUnbounded(east, map.landmarks(), separated).has_value());
+  const auto joined = rooms.addUnbounded(east, map.landmarks(), bounding);
+  ASSERT_TRUE(joined.has_value());
+  EXPECT_EQ(joined->room_id, created.room_id);
+  EXPECT_EQ(rooms.rooms().at(created.room_id).room.walls, west.walls);
 }
 
 TEST(WallMapMirror, IsWallFollowsTheSceneGraphsFlag) {

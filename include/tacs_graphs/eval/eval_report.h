@@ -32,6 +32,7 @@ struct MethodSummary {
   double ate_m = 0.0, odom_ate_m = 0.0, path_m = 0.0;
   double n_room = 0.0, sigma_room = 0.0, dcs = 0.0;  // Table I (paper eq. 5)
   double room_precision = 0.0, room_recall = 0.0, room_f1 = 0.0, room_dice = 0.0;
+  double wall_precision = 0.0;  // of the walls, over all trials' walls (eval/wall_metrics.h)
   double n_loop = 0.0, pr_loop = 0.0, t_ld_s = 0.0, t_fgo_s = 0.0;
   double wall_time_s = 0.0, scans_per_s = 0.0;
   std::vector<RunScores> runs;

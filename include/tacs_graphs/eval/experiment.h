@@ -8,6 +8,7 @@
 
 #include "tacs_graphs/common/types.h"
 #include "tacs_graphs/eval/room_metrics.h"
+#include "tacs_graphs/eval/wall_metrics.h"
 #include "tacs_graphs/scene_graph/scene_graph.h"
 
 namespace tacs {
@@ -40,6 +41,7 @@ struct RunScores {
   SceneGraph graph;                       // as estimated, map frame
   std::vector<RoomNode> rooms_in_world;   // the rooms moved onto the world by T_world_map
   RoomMetrics room_metrics;               // against the ground-truth rooms (ground_truth.json)
+  WallMetrics wall_metrics;               // the walls against the ground-truth walls
 };
 
 /// Reads trajectory_tum.txt, odometry_tum.txt, ground_truth_tum.txt, ground_truth.json,

@@ -62,6 +62,8 @@ struct RoomExtractionResult {
   RoomObservation room;  // valid when found
   /// Adjacent free-space points of the chosen wall per category (0 when none).
   std::array<int, 4> adjacent_points = {0, 0, 0, 0};
+  /// A corridor's width: the distance of its facing pair (0 for a four-wall room) [m].
+  double corridor_width = 0.0;
   /// Why no room was found (empty when found).
   std::string reason;
 };

@@ -70,11 +70,16 @@ class RoomMap {
 
   /// A free-space region only free-standing furniture bounds (an aisle between racks, whose faces
   /// bound no room: rooms/room_bounds.h) joins the mapped room it touches along most cells (at
-  /// least 3 cells of merging.overlap_cell in or next to the room's) among those whose wall pairs
-  /// enclose 80 % of it: its free space and keyframes become the room's, the room keeps its
-  /// walls. Nothing when no room qualifies.
+  /// least 3 cells of merging.overlap_cell in or next to the room's) among those whose wall
+  /// pairs enclose 80 % of it, or that share a wall with it (the same face:
+  /// `region.walls`, a hall's side beside its gondola rows, where an L-shaped hall's pairs enclose
+  /// little) with none of the `bounding` planes (walls and anchored planes, rooms/room_bounds.h)
+  /// between the two free spaces' centroids (a room behind the hall's long wall shares it too): its
+  /// free space and keyframes become the room's, the room keeps its walls. A region with walls of
+  /// its own joins four-wall rooms only. Nothing when no room qualifies.
   std::optional<RoomAssociation> addUnbounded(const RoomObservation& region,
-                                              const std::map<uint32_t, WallLandmark>& landmarks);
+                                              const std::map<uint32_t, WallLandmark>& landmarks,
+                                              const std::map<uint32_t, WallLandmark>& bounding);
 
   /// S-Graphs+ style association by 2D centre distance (the voxel baseline).
   RoomAssociation addByCenterDistance(const RoomObservation& observation,

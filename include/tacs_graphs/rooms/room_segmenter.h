@@ -86,7 +86,9 @@ class RoomSegmenter {
                      RoomSegmentationResult* result);
   /// Joins the kept regions that only free-standing furniture bounds to the rooms they open into
   /// (RoomMap::addUnbounded), once such a room is mapped.
-  void joinUnboundedRegions(const WallMap& walls, RoomSegmentationResult* result);
+  /// `bounding`: the planes that may bound rooms (rooms/room_bounds.h).
+  void joinUnboundedRegions(const WallMap& walls, const std::map<uint32_t, WallLandmark>& bounding,
+                            RoomSegmentationResult* result);
 
   RoomsConfig config_;
   DominantAxesConfig axes_config_;

@@ -124,6 +124,11 @@ struct RoomExtractionConfig {
   double extent_margin = 0.5;
   /// Facing walls must be at least this far apart [m].
   double min_width = 1.0;
+  /// Method "tacs": one facing pair farther apart than this around a region that free-standing
+  /// furniture closes on the other axis is no corridor but part of a hall (between a
+  /// supermarket's long walls, beside its gondola rows): it joins the mapped room sharing one of
+  /// those walls (RoomMap::addUnbounded); with none mapped yet it stays a room of its own [m].
+  double max_corridor_width = 5.0;
   /// Free-space regions with fewer points are not rooms [-].
   int min_free_space_points = 30;
   /// Share of the free-space points that must lie between a pair of facing walls [-].
@@ -136,6 +141,9 @@ struct RoomExtractionConfig {
   /// Method "tacs": a wall-shaped plane whose top is more than this below the tallest wall's has
   /// furniture height and, like furniture, bounds a room only when anchored [m].
   double wall_top_margin = 1.5;
+  /// Method "tacs": ... or whose top is below this share of the tallest wall's (the floor's
+  /// ceiling height) [-].
+  double wall_top_min_share = 0.75;
 
   template <class V>
   void visit(V& v) {
@@ -144,10 +152,12 @@ struct RoomExtractionConfig {
     v("max_behind_share", max_behind_share);
     v("extent_margin_m", extent_margin);
     v("min_width_m", min_width);
+    v("max_corridor_width_m", max_corridor_width);
     v("min_free_space_points", min_free_space_points);
     v("min_inside_share", min_inside_share);
     v("anchor_distance_m", anchor_distance);
     v("wall_top_margin_m", wall_top_margin);
+    v("wall_top_min_share", wall_top_min_share);
   }
   void validate() const;
 };

@@ -27,7 +27,7 @@ bool meets(const WallLandmark& plane, const WallLandmark& anchored, double dista
 }  // namespace
 
 std::map<uint32_t, WallLandmark> roomBoundingPlanes(const WallMap& walls, double anchor_distance,
-                                                    double top_margin) {
+                                                    double top_margin, double top_min_share) {
   const std::map<uint32_t, WallLandmark>& all = walls.landmarks();
   if (anchor_distance <= 0.0) return all;
   // Rack faces seen only from their aisle are never seen over, so they pass for walls by their
@@ -44,8 +44,9 @@ std::map<uint32_t, WallLandmark> roomBoundingPlanes(const WallMap& walls, double
     }
   }
   std::map<uint32_t, WallLandmark> bounding;
+  const double wall_top = std::max(tallest - top_margin, top_min_share * tallest);
   for (const auto& [id, plane] : shaped) {
-    if (plane->mean_top >= tallest - top_margin) {
+    if (plane->mean_top >= wall_top) {
       bounding.emplace(id, *plane);
     } else {
       loose.emplace_back(id, plane);

@@ -156,6 +156,11 @@ RoomExtractionResult extractRoom(const std::vector<Eigen::Vector3d>& free_space,
   }
   RoomObservation& room = result.room;
   room.kind = has_x && has_y ? RoomKind::kRoom : RoomKind::kCorridor;
+  if (has_x != has_y) {
+    result.corridor_width =
+        has_x ? candidates[kXMinus][px.high].position - candidates[kXPlus][px.low].position
+              : candidates[kYMinus][py.high].position - candidates[kYPlus][py.low].position;
+  }
   room.axes_yaw = axes.yaw;
   room.free_space = free_space;
   if (has_x) {

@@ -255,7 +255,8 @@ RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
 }
 
 std::optional<RoomAssociation> RoomMap::addUnbounded(
-    const RoomObservation& region, const std::map<uint32_t, WallLandmark>& landmarks) {
+    const RoomObservation& region, const std::map<uint32_t, WallLandmark>& landmarks,
+    const std::map<uint32_t, WallLandmark>& bounding) {
   remember(landmarks);
   // The region's cells with their 8 neighbours: a cell of a room among them is a contact.
   std::vector<std::array<int64_t, 9>> neighbourhoods;
@@ -275,9 +276,25 @@ std::optional<RoomAssociation> RoomMap::addUnbounded(
   }
   MappedRoom* best = nullptr;
   size_t best_contacts = kMinContactCells - 1;
+  const std::vector<uint32_t> region_walls = region.wallIds();
   for (auto& [id, m] : rooms_) {
-    // The room's walls must enclose the region (an office it touches through its door does not).
-    if (shareWithinWalls(m.room, region.free_space, landmarks) < kMinEnclosedShare) continue;
+    // The room's walls must enclose the region (an office it touches through its door does not),
+    // or the region lies along a face of its walls, on its side (an L-shaped hall's other wing).
+    // A region with walls of its own (a hall's wide part, RoomSegmenter) joins four-wall rooms
+    // only: a corridor's one pair flanks whatever lies between its walls, rooms behind them too.
+    if (!region_walls.empty() && m.room.kind != RoomKind::kRoom) continue;
+    const std::vector<uint32_t> walls = m.room.wallIds();
+    const bool shares_a_wall =
+        std::any_of(walls.begin(), walls.end(),
+                    [&](uint32_t id) {
+                      return std::find(region_walls.begin(), region_walls.end(), id) !=
+                             region_walls.end();
+                    }) &&
+        !wallBetween(region.freeSpaceCentroid(), m.room.freeSpaceCentroid(), bounding);
+    if (!shares_a_wall &&
+        shareWithinWalls(m.room, region.free_space, landmarks) < kMinEnclosedShare) {
+      continue;
+    }
     size_t contacts = 0;
     for (const auto& keys : neighbourhoods) {
       contacts += std::any_of(keys.begin(), keys.end(),

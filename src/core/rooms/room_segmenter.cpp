@@ -42,7 +42,8 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
       config_.method == RoomMethod::kTacs && config_.extraction.anchor_distance > 0.0;
   const std::map<uint32_t, WallLandmark> anchored =
       anchored_only ? roomBoundingPlanes(walls, config_.extraction.anchor_distance,
-                                         config_.extraction.wall_top_margin)
+                                         config_.extraction.wall_top_margin,
+                                         config_.extraction.wall_top_min_share)
                     : std::map<uint32_t, WallLandmark>{};
   const std::map<uint32_t, WallLandmark>& bounding = anchored_only ? anchored : walls.landmarks();
   RoomExtractionResult extracted = extractRoom(points, bounding, axes, config_.extraction);
@@ -73,6 +74,23 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
       }
     }
   }
+  if (anchored_only && extracted.found && extracted.room.kind == RoomKind::kCorridor &&
+      extracted.corridor_width > config_.extraction.max_corridor_width) {
+    // A corridor's walls are close. A hall's two long walls around a region that furniture rows
+    // close on the other axis (beside a supermarket's gondolas) make it part of the hall when
+    // the hall is mapped (a room sharing one of those walls); else it stands for the hall.
+    const RoomExtractionResult closed =
+        extractRoom(points, walls.landmarks(), axes, config_.extraction);
+    if (closed.found && closed.room.kind == RoomKind::kRoom) {
+      RoomObservation region = extracted.room;
+      region.keyframe_ids = keyframe_ids;
+      if (auto joined = room_map_.addUnbounded(region, walls.landmarks(), bounding)) {
+        result->observations.push_back(std::move(region));
+        result->associations.push_back(std::move(*joined));
+        return;
+      }
+    }
+  }
   if (!extracted.found) {
     // A region only free-standing furniture bounds (an aisle between racks) is part of the room
     // it opens into, mapped from where that room's walls were seen.
@@ -84,7 +102,7 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
       // The room it opens into may be mapped later (its walls seen from elsewhere): kept until
       // then.
       unbounded_.push_back(std::move(region));
-      joinUnboundedRegions(walls, result);
+      joinUnboundedRegions(walls, bounding, result);
       return;
     }
     result->rejected.push_back(extracted.reason);
@@ -103,12 +121,14 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
                                 : room_map_.addObservation(extracted.room, walls.landmarks());
   result->observations.push_back(std::move(extracted.room));
   result->associations.push_back(a);
-  if (!unbounded_.empty()) joinUnboundedRegions(walls, result);
+  if (!unbounded_.empty()) joinUnboundedRegions(walls, bounding, result);
 }
 
-void RoomSegmenter::joinUnboundedRegions(const WallMap& walls, RoomSegmentationResult* result) {
+void RoomSegmenter::joinUnboundedRegions(const WallMap& walls,
+                                         const std::map<uint32_t, WallLandmark>& bounding,
+                                         RoomSegmentationResult* result) {
   for (auto it = unbounded_.begin(); it != unbounded_.end();) {
-    if (auto joined = room_map_.addUnbounded(*it, walls.landmarks())) {
+    if (auto joined = room_map_.addUnbounded(*it, walls.landmarks(), bounding)) {
       result->observations.push_back(std::move(*it));
       result->associations.push_back(std::move(*joined));
       it = unbounded_.erase(it);

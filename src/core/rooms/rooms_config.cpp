@@ -41,11 +41,15 @@ void RoomExtractionConfig::validate() const {
   requireConfig(max_behind_share >= 0.0, p + "max_behind_share", "must be >= 0");
   requireConfig(extent_margin >= 0.0, p + "extent_margin_m", "must be >= 0");
   requireConfig(min_width > 0.0, p + "min_width_m", "must be > 0");
+  requireConfig(max_corridor_width > min_width, p + "max_corridor_width_m",
+                "must be > min_width_m");
   requireConfig(min_free_space_points >= 1, p + "min_free_space_points", "must be >= 1");
   requireConfig(min_inside_share >= 0.0 && min_inside_share <= 1.0, p + "min_inside_share",
                 "must be in [0, 1]");
   requireConfig(anchor_distance >= 0.0, p + "anchor_distance_m", "must be >= 0");
   requireConfig(wall_top_margin >= 0.0, p + "wall_top_margin_m", "must be >= 0");
+  requireConfig(wall_top_min_share >= 0.0 && wall_top_min_share <= 1.0, p + "wall_top_min_share",
+                "must be in [0, 1]");
 }
 
 void RoomMergingConfig::validate() const {
