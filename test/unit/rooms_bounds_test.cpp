@@ -95,6 +95,17 @@ TEST(RoomExtraction, ACorridorReportsTheDistanceOfItsFacingPair) {
             0.0);
 }
 
+TEST(RoomBoundingPlanes, AShortPlaneUpAHighCeilingDoesNotSetTheWallsTop) {
+  // A 2 m face reaching 12 m (a column up to a skylight) is no measure of the 8 m walls' top.
+  WallMap map = hall();
+  std::map<uint32_t, WallLandmark> lm = map.landmarks();
+  lm[11] = face(11, {10, 9}, {12, 9}, Eigen::Vector2d(0, -1), 12.0);
+  map.setLandmarks(lm, std::set<uint32_t>{0, 1, 2, 3, 4, 11});
+  const auto bounding = roomBoundingPlanes(map, 0.5, 1.5, 0.75);
+  for (uint32_t id : {0u, 1u, 2u, 3u, 6u, 7u}) EXPECT_EQ(bounding.count(id), 1u) << id;
+  EXPECT_EQ(bounding.count(4), 0u);
+}
+
 TEST(RoomBoundingPlanes, ZeroAnchorDistanceKeepsEveryPlane) {
   const WallMap map = hall();
   EXPECT_EQ(roomBoundingPlanes(map, 0.0, 1.5, 0.0).size(), map.landmarks().size());

@@ -73,6 +73,9 @@ class BackendSession {
   OptimizationReport optimize() { return backend_.optimize(); }
 
   /// The optimised scene graph with the room nodes, the keyframes' room ids and the scan input.
+  /// With the paper's rooms (rooms.method tacs), a plane that bounds no room because it is
+  /// free-standing furniture (rooms/room_bounds.h: a rack row, a book stack, a cubicle
+  /// partition) is no wall of the graph either (WallNode::is_wall).
   SceneGraph sceneGraph() const;
   /// The odometry's scan counts (from its keyframes); the largest seen are kept.
   void noteScanInput(const ScanInput& input);

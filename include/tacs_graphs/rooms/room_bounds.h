@@ -18,11 +18,11 @@
 namespace tacs {
 
 /// The walls of `walls` and the planes anchored to them (see the file comment). Walls: planes of
-/// a wall's shape whose mean top is at most `top_margin` below the tallest such plane's and at
-/// least `top_min_share` of its height (1.6 m cubicle partitions under a 3 m ceiling are
-/// furniture, though only 1.5 m lower). An end within `anchor_distance` (xy) of an anchored
-/// plane's extent anchors a plane. anchor_distance <= 0 returns every landmark (each plane may
-/// bound a room, as in the paper).
+/// a wall's shape whose mean top is at most `top_margin` below the tallest such plane's (of those
+/// at least 4 m long, when there are some) and at least `top_min_share` of its height (1.6 m
+/// cubicle partitions under a 3 m ceiling are furniture, though only 1.5 m lower). An end within
+/// `anchor_distance` (xy) of an anchored plane's extent anchors a plane. anchor_distance <= 0
+/// returns every landmark (each plane may bound a room, as in the paper).
 std::map<uint32_t, WallLandmark> roomBoundingPlanes(const WallMap& walls, double anchor_distance,
                                                     double top_margin, double top_min_share);
 

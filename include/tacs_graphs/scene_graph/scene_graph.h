@@ -35,9 +35,10 @@ struct WallNode {
   std::array<Eigen::Vector2d, 2> endpoints = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
   std::array<double, 2> z_range = {0.0, 0.0};
   /// False for a plane landmark that is no wall of the building: a surface the sensor saw over
-  /// (cabinet, shelf, half wall) or one shorter than a wall (pillar face, box side). It still
-  /// constrains the poses, and bounds a room when it is anchored to the walls
-  /// (rooms/room_bounds.h).
+  /// (cabinet, shelf, half wall), one shorter than a wall (pillar face, box side), or, with the
+  /// paper's rooms, free-standing furniture of less than a wall's height (rack row, book stack,
+  /// cubicle partition). It still constrains the poses, and bounds a room when it is anchored to
+  /// the walls (rooms/room_bounds.h).
   bool is_wall = true;
 };
 

@@ -10,6 +10,7 @@
 
 #include "tacs_graphs/common/file_io.h"
 #include "tacs_graphs/common/trajectory_io.h"
+#include "tacs_graphs/rooms/room_bounds.h"
 
 namespace tacs {
 namespace {
@@ -294,6 +295,13 @@ std::string BackendSession::journalText() const {
 
 SceneGraph BackendSession::sceneGraph() const {
   SceneGraph graph = backend_.sceneGraph();
+  const RoomExtractionConfig& rule = config_.rooms.extraction;
+  if (config_.rooms.method == RoomMethod::kTacs && rule.anchor_distance > 0.0) {
+    const std::map<uint32_t, WallLandmark> bounding =
+        roomBoundingPlanes(backend_.wallMap(), rule.anchor_distance, rule.wall_top_margin,
+                           rule.wall_top_min_share);
+    for (auto& [id, wall] : graph.walls) wall.is_wall = wall.is_wall && bounding.count(id) > 0;
+  }
   graph.input = scan_input_;
   return graph;
 }

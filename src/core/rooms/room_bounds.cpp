@@ -1,12 +1,15 @@
 #include "tacs_graphs/rooms/room_bounds.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <utility>
 #include <vector>
 
 namespace tacs {
 namespace {
+
+constexpr double kLongWallM = 4.0;  // [m] a wall this long is one of the building's
 
 // Distance (xy) from p to the segment a-b.
 double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
@@ -34,15 +37,20 @@ std::map<uint32_t, WallLandmark> roomBoundingPlanes(const WallMap& walls, double
   // shape; their top, far below the hall's walls, gives them away. (hasWallShape scans the other
   // landmarks: asked once per plane.)
   std::vector<std::pair<uint32_t, const WallLandmark*>> shaped, loose;  // loose: not anchored yet
+  // The walls' top is the tallest long wall's: a column face or a short plane up a high ceiling
+  // (the real hall's 2 m face reaching 8 m, its 40 m walls 5 m) would put every wall below it.
   double tallest = -std::numeric_limits<double>::infinity();
+  double tallest_long = tallest;
   for (const auto& [id, plane] : all) {
     if (walls.hasWallShape(id)) {
       shaped.emplace_back(id, &plane);
       tallest = std::max(tallest, plane.mean_top);
+      if (plane.length() >= kLongWallM) tallest_long = std::max(tallest_long, plane.mean_top);
     } else {
       loose.emplace_back(id, &plane);
     }
   }
+  if (std::isfinite(tallest_long)) tallest = tallest_long;
   std::map<uint32_t, WallLandmark> bounding;
   const double wall_top = std::max(tallest - top_margin, top_min_share * tallest);
   for (const auto& [id, plane] : shaped) {
