@@ -32,4 +32,8 @@ double rotationAngleDeg(const Pose3& T);
 /// The cross-product matrix [v]x: skew(v) * u == v.cross(u).
 Eigen::Matrix3d skew(const Eigen::Vector3d& v);
 
+/// Distance from p to the segment a-b (2D).
+double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                         const Eigen::Vector2d& b);
+
 }  // namespace tacs

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <map>
 
+#include "tacs_graphs/rooms/rooms_config.h"
 #include "tacs_graphs/walls/wall_map.h"
 
 namespace tacs {
@@ -25,5 +26,12 @@ namespace tacs {
 /// returns every landmark (each plane may bound a room, as in the paper).
 std::map<uint32_t, WallLandmark> roomBoundingPlanes(const WallMap& walls, double anchor_distance,
                                                     double top_margin, double top_min_share);
+/// The same with rooms.extraction's anchor_distance_m, wall_top_margin_m, wall_top_min_share.
+std::map<uint32_t, WallLandmark> roomBoundingPlanes(const WallMap& walls,
+                                                    const RoomExtractionConfig& config);
+
+/// Whether the rule holds: the paper's rooms (method tacs) with anchor_distance_m > 0; the voxel
+/// baseline keeps every plane, as S-Graphs+ does.
+bool freeStandingFurnitureBoundsNoRoom(const RoomsConfig& config);
 
 }  // namespace tacs

@@ -84,6 +84,14 @@ class RoomSegmenter {
                  const DominantAxes& axes, RoomSegmentationResult* result);
   void clusterVoxels(const WallMap& walls, const DominantAxes& axes,
                      RoomSegmentationResult* result);
+  /// A corridor wider than rooms.extraction.max_corridor_width_m that free-standing furniture
+  /// closes on its other axis (its region `points`) joins the mapped hall sharing one of its
+  /// walls; true when it did.
+  bool joinedAHall(const RoomExtractionResult& extracted,
+                   const std::vector<Eigen::Vector3d>& points,
+                   const std::vector<uint32_t>& keyframe_ids, const WallMap& walls,
+                   const std::map<uint32_t, WallLandmark>& bounding, const DominantAxes& axes,
+                   RoomSegmentationResult* result);
   /// Joins the kept regions that only free-standing furniture bounds to the rooms they open into
   /// (RoomMap::addUnbounded), once such a room is mapped.
   /// `bounding`: the planes that may bound rooms (rooms/room_bounds.h).

@@ -1,5 +1,7 @@
 #include "tacs_graphs/common/types.h"
 
+#include <algorithm>
+
 namespace tacs {
 
 Pose3 poseFromXyzRpy(double x, double y, double z, double roll, double pitch, double yaw) {
@@ -20,6 +22,14 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   Eigen::Matrix3d m;
   m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
   return m;
+}
+
+double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                         const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).norm();
 }
 
 }  // namespace tacs

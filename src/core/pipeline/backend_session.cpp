@@ -295,11 +295,8 @@ std::string BackendSession::journalText() const {
 
 SceneGraph BackendSession::sceneGraph() const {
   SceneGraph graph = backend_.sceneGraph();
-  const RoomExtractionConfig& rule = config_.rooms.extraction;
-  if (config_.rooms.method == RoomMethod::kTacs && rule.anchor_distance > 0.0) {
-    const std::map<uint32_t, WallLandmark> bounding =
-        roomBoundingPlanes(backend_.wallMap(), rule.anchor_distance, rule.wall_top_margin,
-                           rule.wall_top_min_share);
+  if (freeStandingFurnitureBoundsNoRoom(config_.rooms)) {
+    const auto bounding = roomBoundingPlanes(backend_.wallMap(), config_.rooms.extraction);
     for (auto& [id, wall] : graph.walls) wall.is_wall = wall.is_wall && bounding.count(id) > 0;
   }
   graph.input = scan_input_;

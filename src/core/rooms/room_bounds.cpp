@@ -1,7 +1,6 @@
 #include "tacs_graphs/rooms/room_bounds.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -11,15 +10,6 @@ namespace {
 
 constexpr double kLongWallM = 4.0;  // [m] a wall this long is one of the building's
 
-// Distance (xy) from p to the segment a-b.
-double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                         const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
-
 bool meets(const WallLandmark& plane, const WallLandmark& anchored, double distance) {
   return std::any_of(
       std::begin(plane.endpoints), std::end(plane.endpoints), [&](const Eigen::Vector2d& end) {
@@ -28,6 +18,16 @@ bool meets(const WallLandmark& plane, const WallLandmark& anchored, double dista
 }
 
 }  // namespace
+
+bool freeStandingFurnitureBoundsNoRoom(const RoomsConfig& config) {
+  return config.method == RoomMethod::kTacs && config.extraction.anchor_distance > 0.0;
+}
+
+std::map<uint32_t, WallLandmark> roomBoundingPlanes(const WallMap& walls,
+                                                    const RoomExtractionConfig& config) {
+  return roomBoundingPlanes(walls, config.anchor_distance, config.wall_top_margin,
+                            config.wall_top_min_share);
+}
 
 std::map<uint32_t, WallLandmark> roomBoundingPlanes(const WallMap& walls, double anchor_distance,
                                                     double top_margin, double top_min_share) {
@@ -39,18 +39,18 @@ std::map<uint32_t, WallLandmark> roomBoundingPlanes(const WallMap& walls, double
   std::vector<std::pair<uint32_t, const WallLandmark*>> shaped, loose;  // loose: not anchored yet
   // The walls' top is the tallest long wall's: a column face or a short plane up a high ceiling
   // (the real hall's 2 m face reaching 8 m, its 40 m walls 5 m) would put every wall below it.
-  double tallest = -std::numeric_limits<double>::infinity();
-  double tallest_long = tallest;
+  constexpr double kNone = -std::numeric_limits<double>::infinity();
+  double tallest_any = kNone, tallest_long = kNone;
   for (const auto& [id, plane] : all) {
     if (walls.hasWallShape(id)) {
       shaped.emplace_back(id, &plane);
-      tallest = std::max(tallest, plane.mean_top);
+      tallest_any = std::max(tallest_any, plane.mean_top);
       if (plane.length() >= kLongWallM) tallest_long = std::max(tallest_long, plane.mean_top);
     } else {
       loose.emplace_back(id, &plane);
     }
   }
-  if (std::isfinite(tallest_long)) tallest = tallest_long;
+  const double tallest = tallest_long > kNone ? tallest_long : tallest_any;
   std::map<uint32_t, WallLandmark> bounding;
   const double wall_top = std::max(tallest - top_margin, top_min_share * tallest);
   for (const auto& [id, plane] : shaped) {

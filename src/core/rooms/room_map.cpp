@@ -277,20 +277,20 @@ std::optional<RoomAssociation> RoomMap::addUnbounded(
   MappedRoom* best = nullptr;
   size_t best_contacts = kMinContactCells - 1;
   const std::vector<uint32_t> region_walls = region.wallIds();
+  const Eigen::Vector2d region_centroid = region.freeSpaceCentroid();
   for (auto& [id, m] : rooms_) {
     // The room's walls must enclose the region (an office it touches through its door does not),
     // or the region lies along a face of its walls, on its side (an L-shaped hall's other wing).
     // A region with walls of its own (a hall's wide part, RoomSegmenter) joins four-wall rooms
     // only: a corridor's one pair flanks whatever lies between its walls, rooms behind them too.
     if (!region_walls.empty() && m.room.kind != RoomKind::kRoom) continue;
-    const std::vector<uint32_t> walls = m.room.wallIds();
     const bool shares_a_wall =
-        std::any_of(walls.begin(), walls.end(),
-                    [&](uint32_t id) {
-                      return std::find(region_walls.begin(), region_walls.end(), id) !=
-                             region_walls.end();
+        std::any_of(region_walls.begin(), region_walls.end(),
+                    [&](uint32_t w) {
+                      return std::count(m.room.walls.begin(), m.room.walls.end(),
+                                        static_cast<int>(w)) > 0;
                     }) &&
-        !wallBetween(region.freeSpaceCentroid(), m.room.freeSpaceCentroid(), bounding);
+        !wallBetween(region_centroid, m.room.freeSpaceCentroid(), bounding);
     if (!shares_a_wall &&
         shareWithinWalls(m.room, region.free_space, landmarks) < kMinEnclosedShare) {
       continue;

@@ -36,14 +36,10 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
     result->rejected.push_back("building axes unknown (too few walls)");
     return;
   }
-  // Free-standing furniture bounds no room in the paper's method (rooms/room_bounds.h); the voxel
-  // baseline keeps every plane, as S-Graphs+ does.
-  const bool anchored_only =
-      config_.method == RoomMethod::kTacs && config_.extraction.anchor_distance > 0.0;
+  // Free-standing furniture bounds no room in the paper's method (rooms/room_bounds.h).
+  const bool anchored_only = freeStandingFurnitureBoundsNoRoom(config_);
   const std::map<uint32_t, WallLandmark> anchored =
-      anchored_only ? roomBoundingPlanes(walls, config_.extraction.anchor_distance,
-                                         config_.extraction.wall_top_margin,
-                                         config_.extraction.wall_top_min_share)
+      anchored_only ? roomBoundingPlanes(walls, config_.extraction)
                     : std::map<uint32_t, WallLandmark>{};
   const std::map<uint32_t, WallLandmark>& bounding = anchored_only ? anchored : walls.landmarks();
   RoomExtractionResult extracted = extractRoom(points, bounding, axes, config_.extraction);
@@ -74,23 +70,8 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
       }
     }
   }
-  if (anchored_only && extracted.found && extracted.room.kind == RoomKind::kCorridor &&
-      extracted.corridor_width > config_.extraction.max_corridor_width) {
-    // A corridor's walls are close. A hall's two long walls around a region that furniture rows
-    // close on the other axis (beside a supermarket's gondolas) make it part of the hall when
-    // the hall is mapped (a room sharing one of those walls); else it stands for the hall.
-    const RoomExtractionResult closed =
-        extractRoom(points, walls.landmarks(), axes, config_.extraction);
-    if (closed.found && closed.room.kind == RoomKind::kRoom) {
-      RoomObservation region = extracted.room;
-      region.keyframe_ids = keyframe_ids;
-      if (auto joined = room_map_.addUnbounded(region, walls.landmarks(), bounding)) {
-        result->observations.push_back(std::move(region));
-        result->associations.push_back(std::move(*joined));
-        return;
-      }
-    }
-  }
+  if (anchored_only && joinedAHall(extracted, points, keyframe_ids, walls, bounding, axes, result))
+    return;
   if (!extracted.found) {
     // A region only free-standing furniture bounds (an aisle between racks) is part of the room
     // it opens into, mapped from where that room's walls were seen.
@@ -122,6 +103,30 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
   result->observations.push_back(std::move(extracted.room));
   result->associations.push_back(a);
   if (!unbounded_.empty()) joinUnboundedRegions(walls, bounding, result);
+}
+
+bool RoomSegmenter::joinedAHall(const RoomExtractionResult& extracted,
+                                const std::vector<Eigen::Vector3d>& points,
+                                const std::vector<uint32_t>& keyframe_ids, const WallMap& walls,
+                                const std::map<uint32_t, WallLandmark>& bounding,
+                                const DominantAxes& axes, RoomSegmentationResult* result) {
+  // A corridor's walls are close. A hall's two long walls around a region that furniture rows
+  // close on the other axis (beside a supermarket's gondolas) make it part of the hall when the
+  // hall is mapped (a room sharing one of those walls); else it stands for the hall.
+  if (!extracted.found || extracted.room.kind != RoomKind::kCorridor ||
+      extracted.corridor_width <= config_.extraction.max_corridor_width) {
+    return false;
+  }
+  const RoomExtractionResult closed =
+      extractRoom(points, walls.landmarks(), axes, config_.extraction);
+  if (!closed.found || closed.room.kind != RoomKind::kRoom) return false;
+  RoomObservation region = extracted.room;
+  region.keyframe_ids = keyframe_ids;
+  auto joined = room_map_.addUnbounded(region, walls.landmarks(), bounding);
+  if (!joined) return false;
+  result->observations.push_back(std::move(region));
+  result->associations.push_back(std::move(*joined));
+  return true;
 }
 
 void RoomSegmenter::joinUnboundedRegions(const WallMap& walls,

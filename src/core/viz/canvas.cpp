@@ -9,6 +9,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "tacs_graphs/common/types.h"
+
 namespace tacs::viz {
 namespace {
 
@@ -41,14 +43,6 @@ constexpr uint8_t kGlyphs[][7] = {
     {0x00, 0x00, 0x00, 0x00, 0x0C, 0x04, 0x08},
 };
 static_assert(sizeof(kGlyphs) / sizeof(kGlyphs[0]) == sizeof(kGlyphChars) - 1);
-
-double segmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                       const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * ab)).norm();
-}
 
 }  // namespace
 
@@ -107,7 +101,7 @@ void Canvas::drawLine(const Eigen::Vector2d& a, const Eigen::Vector2d& b, Rgba c
   const double h = std::max(0.5, 0.5 * thickness_px);
   const Eigen::Vector2d lo = pa.cwiseMin(pb).array() - h, hi = pa.cwiseMax(pb).array() + h;
   fillWhere(lo.x(), lo.y(), hi.x(), hi.y(), color,
-            [&](const Eigen::Vector2d& p) { return segmentDistance(p, pa, pb) <= h; });
+            [&](const Eigen::Vector2d& p) { return distanceToSegment(p, pa, pb) <= h; });
 }
 
 void Canvas::drawPolyline(const std::vector<Eigen::Vector2d>& pts, Rgba color, double thickness_px,
