@@ -25,6 +25,9 @@ enum JournalChannel : uint8_t { kKeyframeChannel, kWallsChannel, kRoomsChannel, 
 // A graph built from fewer scans than this share of the sensor's is saved with a warning.
 constexpr double kUnreliableDropRatio = 0.05;
 
+// With a prior map, the save's subfolder holding the session in the prior's frame.
+constexpr char kPriorFrameFolder[] = "in_prior";
+
 std::string defaultOutputDir() {
   if (const char* ros_home = std::getenv("ROS_HOME")) return std::string(ros_home) + "/tacs_graphs";
   const char* home = std::getenv("HOME");
@@ -297,12 +300,20 @@ void BackendNode::publishMap(const ros::TimerEvent&) {
 bool BackendNode::save(std::string* message) {
   try {
     session_->save(output_dir_, config_.map_export);
+    *message =
+        "saved " + std::to_string(session_->keyframeCount()) + " keyframes to " + output_dir_;
     if (prior_) {
       writeFileAtomically(output_dir_ + "/localization.json",
                           prior_->localizationJson().dump(2) + "\n");
+      // The folder itself stays in the session's frame (its journal is); the session in the
+      // prior's frame, merged into it, goes beside it as the prior map of the next run.
+      const double voxel_m = config_.map_export.cloud_voxel_m;
+      const std::string in_prior = output_dir_ + "/" + kPriorFrameFolder;
+      if (prior_->writePriorFrameMap(in_prior, session_->sceneGraph(), session_->mapCloud(voxel_m),
+                                     voxel_m)) {
+        *message += "; in the prior's frame to " + in_prior;
+      }
     }
-    *message =
-        "saved " + std::to_string(session_->keyframeCount()) + " keyframes to " + output_dir_;
     ROS_INFO_STREAM(*message);
     const auto& input = session_->scanInput();
     if (input && input->dropRatio() > kUnreliableDropRatio) {

@@ -185,6 +185,22 @@ class PipelineTest(unittest.TestCase):
                 loc = json.load(f)
             self.assertEqual(loc['status'], 'localized', json.dumps(loc))
             self.assertTrue(loc['room_pairs'], 'no room re-observed')
+            self.check_in_prior(os.path.join(output_dir, 'in_prior'), loc)
+
+    def check_in_prior(self, folder, loc):
+        """The save's in_prior/ is the next run's prior map: the session merged into the prior
+        graph, in the prior's frame, with the re-observed rooms under their prior ids."""
+        for name in ('scene_graph.json', 'map.pcd', 'session_graph.json', 'localization.json'):
+            self.assertTrue(os.path.isfile(os.path.join(folder, name)), name + ' not in in_prior/')
+        with open(os.path.join(folder, 'scene_graph.json')) as f:
+            merged = json.load(f)
+        with open(os.path.join(self.tmp, 'prior', 'scene_graph.json')) as f:
+            prior = json.load(f)
+        merged_rooms = {r['id'] for r in merged['rooms']}
+        for pair in loc['room_pairs']:
+            self.assertIn(pair['prior'], merged_rooms, 'a paired prior room left the merged graph')
+        self.assertGreater(len(merged['keyframes']), len(prior['keyframes']),
+                           'the session did not join the prior graph')
 
     def run_offline(self, args):
         run = subprocess.run(['rosrun', 'tacs_graphs', 'tacs_offline'] + args + ['--quiet'],

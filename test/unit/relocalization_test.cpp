@@ -1,6 +1,7 @@
 // Relocalization in a prior map: the prior's files, placing a session by its room, refusing
 // ambiguous and foreign places, pairing and merging rooms.
 #include <gtest/gtest.h>
+#include <pcl/common/common.h>
 
 #include <filesystem>
 #include <fstream>
@@ -264,6 +265,45 @@ TEST_F(PriorMapFiles, EachBadFileIsNamedAndLeftAsItWas) {
       << loadError();
   fs::remove(dir_ / "scene_graph.json");
   EXPECT_NE(loadError().find("scene_graph.json: missing"), std::string::npos) << loadError();
+}
+
+// The backend node's save beside its own folder: the session in the prior's frame, loadable as
+// the next run's prior map; nothing before the session is placed.
+TEST_F(PriorMapFiles, APlacedSessionIsSavedAsAPriorMapInThePriorsFrame) {
+  const test::BoxRoom scene;
+  const Pose3 T_world_session = poseFromXyzRpy(3.0, -2.0, 0.0, 0.0, 0.0, 2.2);
+  const SceneGraph session = roomGraph(scene, T_world_session.inverse());
+  const PointCloud session_map = moved(roomMap(scene, 7), T_world_session.inverse());
+  KeyframeClouds clouds;
+  clouds[0].reset(new PointCloud(moved(session_map, session.keyframes.at(0).pose().inverse())));
+  const PriorMap loaded = PriorMap::load(dir_.string());
+  const std::string prior_graph = read(dir_ / "scene_graph.json");
+  for (PriorMode mode : {PriorMode::kMerge, PriorMode::kLocalizeOnly}) {
+    SCOPED_TRACE(enumName(mode));
+    const fs::path out = dir_ / ("in_prior_" + std::string(enumName(mode)));
+    PriorSession prior(loaded, mode, RelocalizationConfig());
+    EXPECT_FALSE(prior.writePriorFrameMap(out.string(), session, session_map, 0.05));
+    EXPECT_FALSE(fs::exists(out));
+    prior.update(session, clouds, 1.0, 5.0);
+    ASSERT_TRUE(prior.localized());
+    ASSERT_TRUE(prior.writePriorFrameMap(out.string(), session, session_map, 0.05));
+    const PriorMap next = PriorMap::load(out.string());
+    ASSERT_TRUE(next.graph.rooms.count(3));  // the re-observed room keeps its prior id
+    EXPECT_EQ(read(out / "localization.json").find("\"status\": \"localized\""),
+              read(out / "localization.json").find("\"status\""));
+    // The session's points land on the prior's: the map's extent is the prior's.
+    Eigen::Vector4f lo, hi, prior_lo, prior_hi;
+    pcl::getMinMax3D(next.points, lo, hi);
+    pcl::getMinMax3D(loaded.points, prior_lo, prior_hi);
+    EXPECT_LT((lo - prior_lo).head<2>().norm(), 0.1);
+    EXPECT_LT((hi - prior_hi).head<2>().norm(), 0.1);
+    if (mode == PriorMode::kLocalizeOnly) {
+      EXPECT_EQ(read(out / "scene_graph.json"), prior_graph);
+      EXPECT_EQ(next.points.size(), loaded.points.size());
+    } else {
+      EXPECT_EQ(next.graph.keyframes.size(), 2u);  // the prior's and the session's
+    }
+  }
 }
 
 TEST(StartingAtWaypoint, ClosedPathsGoRoundOpenPathsGoBack) {

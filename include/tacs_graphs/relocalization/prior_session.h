@@ -71,6 +71,13 @@ class PriorSession {
   /// in the prior's frame) and DIR/scene_graph.json: the prior's file byte for byte
   /// (localize-only) or the merged graph. Throws std::runtime_error naming the file.
   void writeFiles(const std::string& dir, const SceneGraph& session) const;
+  /// Once placed, writes DIR as a prior map for a later run, in the prior's frame: writeFiles()
+  /// plus DIR/map.pcd, the prior's points joined by `session_map` (the session's map, in its own
+  /// frame) moved into the prior's on a `voxel_m` grid, or the prior's points alone with
+  /// localize-only. The backend node's save, whose own folder stays in the session's frame.
+  /// Returns false (and writes nothing) while unplaced; throws std::runtime_error naming the file.
+  bool writePriorFrameMap(const std::string& dir, const SceneGraph& session,
+                          const PointCloud& session_map, double voxel_m) const;
 
  private:
   PointCloud sessionMap(const SceneGraph& session, const KeyframeClouds& clouds) const;

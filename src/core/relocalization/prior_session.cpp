@@ -1,11 +1,14 @@
 #include "tacs_graphs/relocalization/prior_session.h"
 
+#include <pcl/common/transforms.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
 #include "tacs_graphs/common/file_io.h"
 #include "tacs_graphs/common/timing.h"
+#include "tacs_graphs/odometry/preprocess.h"
 
 namespace tacs {
 
@@ -210,6 +213,21 @@ void PriorSession::writeFiles(const std::string& dir, const SceneGraph& session)
   } else {
     outputGraph(session).save(dir + "/scene_graph.json");
   }
+}
+
+bool PriorSession::writePriorFrameMap(const std::string& dir, const SceneGraph& session,
+                                      const PointCloud& session_map, double voxel_m) const {
+  if (!localized()) return false;
+  ensureDirectory(dir);
+  writeFiles(dir, session);
+  PointCloud map = prior_->points;
+  if (mode_ == PriorMode::kMerge) {
+    PointCloud moved;
+    pcl::transformPointCloud(session_map, moved, T_prior_session_.matrix().cast<float>());
+    map = voxelDownsample(map + moved, voxel_m);
+  }
+  writePcdAtomically(dir + "/map.pcd", map);
+  return true;
 }
 
 SceneGraph mergeSceneGraphs(const SceneGraph& prior, const SceneGraph& session,
