@@ -7,8 +7,10 @@
 # not_localized. Writes results/prior_maps.md.
 #
 #   bash scripts/prior_results.sh [OUT_FILE]
+#   TACS_WORLDS="warehouse open_office" bash scripts/prior_results.sh OUT_FILE  # those worlds only
 #
-# About 90 minutes on 2 cores (99 runs, two at a time). Needs a built workspace.
+# About 3 hours on 2 cores for the 13 worlds (195 runs, two at a time); N worlds take N^2 + N
+# runs. Needs a built workspace.
 set -euo pipefail
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)"
 source "$REPO/scripts/env.sh"
@@ -20,7 +22,14 @@ export OMP_WAIT_POLICY=passive  # two runs share the two cores
 OFFLINE="$(tacs_bin tacs_offline)"
 EVAL="$(tacs_bin tacs_prior_eval)"
 WORLDS=()
-for world in "$REPO"/worlds/*.json; do WORLDS+=("$(basename "$world" .json)"); done
+if [ -n "${TACS_WORLDS:-}" ]; then
+  read -r -a WORLDS <<<"$TACS_WORLDS"
+  for w in "${WORLDS[@]}"; do
+    [ -f "$REPO/worlds/$w.json" ] || { echo "no world $REPO/worlds/$w.json" >&2; exit 2; }
+  done
+else
+  for world in "$REPO"/worlds/*.json; do WORLDS+=("$(basename "$world" .json)"); done
+fi
 
 middle() {  # world -> its middle waypoint
   /usr/bin/python3 -c "import json,sys; print(len(json.load(open(sys.argv[1]))['trajectory']['waypoints'])//2)" \

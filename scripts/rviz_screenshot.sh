@@ -3,6 +3,11 @@
 # screenshot of the whole screen once the bag has played.
 #
 #   scripts/rviz_screenshot.sh [WORLD.json] [OUT.png] [EXTRA_SECONDS]
+#   TACS_PRIOR=1 scripts/rviz_screenshot.sh [WORLD.json] [OUT.png] [EXTRA_SECONDS]
+#
+# With TACS_PRIOR=1 a first session of the world (tacs_offline, seed 1) is the prior map and the
+# played session (seed 2) starts at the path's middle waypoint: the screenshot shows the prior's
+# graph ("Prior map" display) with the re-observed rooms highlighted.
 #
 # Needs the Debian packages rviz, xvfb (Xvfb) and imagemagick (import), and a built workspace:
 # TACS_WS (default ~/.cache/tacs_graphs/ws-*) is sourced as by scripts/setup.sh.
@@ -29,7 +34,15 @@ cleanup() {
 }
 trap cleanup EXIT
 
-"$(tacs_bin tacs_sim)" "$WORLD" --out "$WORK/sim" >"$WORK/sim.log"
+PRIOR_ARGS=()
+SIM_ARGS=()
+if [ "${TACS_PRIOR:-0}" = 1 ]; then
+  "$(tacs_bin tacs_offline)" --world "$WORLD" --seed 1 --out "$WORK/prior" --quiet >"$WORK/prior.log" 2>&1
+  MIDDLE="$(python3 -c "import json,sys; print(len(json.load(open(sys.argv[1]))['trajectory']['waypoints'])//2)" "$WORLD")"
+  SIM_ARGS=(--seed 2 --start-waypoint "$MIDDLE")
+  PRIOR_ARGS=(prior_map:="$WORK/prior")
+fi
+"$(tacs_bin tacs_sim)" "$WORLD" --out "$WORK/sim" "${SIM_ARGS[@]}" >"$WORK/sim.log"
 DURATION="$(python3 - "$WORK/sim/ground_truth_tum.txt" <<'PY'
 import sys
 rows = [l.split() for l in open(sys.argv[1]) if l.strip() and not l.startswith('#')]
@@ -45,9 +58,13 @@ export ROS_MASTER_URI="http://localhost:$((11400 + RANDOM % 500))"
 export ROS_HOME="$WORK/ros_home"
 sleep 1
 roslaunch -p "${ROS_MASTER_URI##*:}" tacs_graphs demo_sim.launch bag:="$WORK/sim/sequence.bag" \
-  rviz:=true output_dir:="$WORK/out" >"$WORK/launch.log" 2>&1 &
+  rviz:=true output_dir:="$WORK/out" "${PRIOR_ARGS[@]}" >"$WORK/launch.log" 2>&1 &
 PIDS=($! "${PIDS[@]}")
 echo "playing $DURATION s of $(basename "$WORLD") ..."
 sleep "$((DURATION + 3 + EXTRA))"
 import -window root "$OUT"
-echo "screenshot: $OUT"
+cp "$WORK/launch.log" "${OUT%.png}.launch.log"
+echo "screenshot: $OUT (the launch's log: ${OUT%.png}.launch.log)"
+if [ "${TACS_PRIOR:-0}" = 1 ]; then
+  grep -m1 "Localized in the prior map" "$WORK/launch.log" || echo "not localized in the prior map"
+fi
