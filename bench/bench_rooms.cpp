@@ -156,7 +156,8 @@ std::vector<std::vector<tacs::RoomNode>> runWorld(const std::string& path, const
     const auto r = segmenters[m].finish(trav_map, walls);
     runs[m].ms.push_back(r.time_ms);
     for (const auto& [id, room] : segmenters[m].rooms()) runs[m].rooms.push_back(room.toNode());
-    const tacs::RoomMetrics metrics = tacs::evaluateRooms(runs[m].rooms, truth.rooms);
+    const tacs::RoomMetrics metrics =
+        tacs::evaluateRooms(tacs::freeSpaceRegions(runs[m].rooms), truth.rooms);
     int over = 0, under = 0;
     segmentationErrors(runs[m].rooms, truth.rooms, &over, &under);
     double mean = 0.0, max = 0.0;
@@ -252,10 +253,12 @@ int main(int argc, char** argv) {
   std::vector<std::string> consistency;
   for (const auto& p : paths) {
     try {
-      std::vector<std::vector<std::vector<tacs::RoomNode>>> trials(2);  // method -> trial
+      std::vector<std::vector<std::vector<tacs::RoomRegion>>> trials(2);  // method -> trial
       for (int t = 1; t <= args.trials; ++t) {
         const auto rooms = runWorld(p, args, static_cast<uint64_t>(t));
-        for (size_t m = 0; m < rooms.size(); ++m) trials[m].push_back(rooms[m]);
+        for (size_t m = 0; m < rooms.size(); ++m) {
+          trials[m].push_back(tacs::freeSpaceRegions(rooms[m]));
+        }
       }
       for (size_t m = 0; m < trials.size() && args.trials > 1; ++m) {
         const tacs::TrialSummary s = tacs::summarizeTrials(trials[m]);

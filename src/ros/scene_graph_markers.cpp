@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "tacs_graphs/ros/message_conversion.h"
+#include "tacs_graphs/scene_graph/room_floor.h"
+#include "tacs_graphs/viz/scene_graph_drawing.h"
 
 namespace tacs {
 namespace {
@@ -98,6 +100,27 @@ void addRooms(const SceneGraph& graph, const std::string& frame, double stamp,
   if (!lines.points.empty()) out->markers.push_back(lines);
 }
 
+// Each room's floor (scene_graph/room_floor.h) as a layer of flat cells just above the ground,
+// coloured as the room in topdown.png.
+void addRoomFloors(const SceneGraph& graph, const std::string& frame, double stamp,
+                   visualization_msgs::MarkerArray* out) {
+  RoomFloorConfig config;
+  config.cell_m = 0.2;  // coarser than the evaluation's grid: a light message
+  for (const auto& [id, cells] : roomFloors(graph, config)) {
+    if (cells.empty()) continue;
+    Marker m = makeMarker(frame, stamp, "room_floors", static_cast<int>(id), Marker::CUBE_LIST);
+    m.scale.x = m.scale.y = config.cell_m;
+    m.scale.z = 0.02;
+    const viz::Rgba c = viz::roomColor(id, 255);
+    m.color = rgba(c.r / 255.0f, c.g / 255.0f, c.b / 255.0f, 0.35f);
+    for (const auto& cell : cells) {
+      m.points.push_back(
+          point((cell.x() + 0.5) * config.cell_m, (cell.y() + 0.5) * config.cell_m, 0.02));
+    }
+    out->markers.push_back(m);
+  }
+}
+
 }  // namespace
 
 visualization_msgs::MarkerArray sceneGraphMarkers(const SceneGraph& graph, const std::string& frame,
@@ -123,6 +146,7 @@ visualization_msgs::MarkerArray sceneGraphMarkers(const SceneGraph& graph, const
 
   addWalls(graph, frame, stamp, &out);
   addRooms(graph, frame, stamp, &out);
+  addRoomFloors(graph, frame, stamp, &out);
 
   Marker loops = makeMarker(frame, stamp, "loops", 0, Marker::LINE_LIST);
   loops.scale.x = 0.06;

@@ -58,10 +58,8 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-std::vector<tacs::RoomNode> roomsIn(const tacs::SceneGraph& graph, const tacs::Pose3& T) {
-  std::vector<tacs::RoomNode> rooms;
-  for (const auto& [id, room] : graph.transformed(T).rooms) rooms.push_back(room);
-  return rooms;
+std::vector<tacs::RoomRegion> roomsIn(const tacs::SceneGraph& graph, const tacs::Pose3& T) {
+  return tacs::floorRegions(graph.transformed(T));
 }
 
 /// The run's ground truth (a world's) or reference (--reference, e.g. a real sequence's).

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "tacs_graphs/ros/keyframe_input.h"
 #include "tacs_graphs/ros/message_conversion.h"
 #include "tacs_graphs/ros/scene_graph_markers.h"
@@ -240,7 +242,16 @@ TEST(SceneGraphMarkers, DrawsEveryLayer) {
   EXPECT_EQ(per_ns["rooms"], 1);
   EXPECT_EQ(per_ns["room_walls"], 1);
   EXPECT_EQ(per_ns["loops"], 1);
+  EXPECT_EQ(per_ns["room_floors"], 1);
   for (const auto& m : markers.markers) {
+    if (m.ns == "room_floors") {
+      // The floor grows from the free space at x = 2-2.5 m up to the wall at x = 1.5, not past.
+      ASSERT_FALSE(m.points.empty());
+      double min_x = 1e9;
+      for (const auto& p : m.points) min_x = std::min(min_x, p.x);
+      EXPECT_GE(min_x, 1.4);
+      EXPECT_LT(min_x, 1.8);
+    }
     if (m.ns == "walls") {
       // The wall runs along y over 3 m at x = 1.5.
       EXPECT_NEAR(m.scale.x, 3.0, 1e-9);

@@ -30,6 +30,11 @@ RoomMetricsConfig exactCells() {
   return c;
 }
 
+// Rooms as the cells of their free-space points.
+std::vector<RoomRegion> cells(const std::vector<RoomNode>& rooms) {
+  return freeSpaceRegions(rooms, exactCells());
+}
+
 TEST(EvalRoomMetrics, RasterisesPolygonsAndPoints) {
   const CellSet square = rasterizePolygon(gtRoom("a", 0, 4, 0, 4).polygon, 0.1);
   EXPECT_EQ(square.size(), 1600u);
@@ -49,7 +54,7 @@ TEST(EvalRoomMetrics, MatchesOneToOneAgainstGroundTruth) {
   // Room a found well, room b split in two halves: each half has Dice 0.67, only one matches.
   const std::vector<RoomNode> est = {estimated(0, 0, 4, 0, 3.6), estimated(1, 4, 6, 0, 4),
                                      estimated(2, 6, 8, 0, 4)};
-  const RoomMetrics m = evaluateRooms(est, gt, exactCells());
+  const RoomMetrics m = evaluateRooms(cells(est), gt, exactCells());
   EXPECT_EQ(m.estimated, 3u);
   EXPECT_EQ(m.ground_truth, 2u);
   EXPECT_EQ(m.matched, 2u);
@@ -62,7 +67,7 @@ TEST(EvalRoomMetrics, MatchesOneToOneAgainstGroundTruth) {
   EXPECT_NEAR(m.mean_dice, 0.5 * (m.rooms[0].dice + m.rooms[1].dice), 1e-12);
 
   // Under-segmentation: one region over both rooms matches one of them only.
-  const RoomMetrics under = evaluateRooms({estimated(0, 0, 8, 0, 4)}, gt, exactCells());
+  const RoomMetrics under = evaluateRooms(cells({estimated(0, 0, 8, 0, 4)}), gt, exactCells());
   EXPECT_EQ(under.matched, 1u);
   EXPECT_NEAR(under.rooms[0].best_dice, 2.0 * 1600 / 4800, 1e-12);
   EXPECT_NEAR(under.rooms[1].best_dice, 2.0 * 1600 / 4800, 1e-12);
@@ -73,20 +78,20 @@ TEST(EvalRoomMetrics, MatchesOneToOneAgainstGroundTruth) {
 TEST(EvalRoomMetrics, DiceScoreBetweenRunsAndTrialStatistics) {
   const std::vector<RoomNode> run1 = {estimated(0, 0, 4, 0, 4), estimated(1, 4, 8, 0, 4)};
   const std::vector<RoomNode> run2 = {estimated(5, 0, 4, 0, 2), estimated(6, 4, 8, 0, 4)};
-  const RunConsistency same = compareRuns(run1, run1, exactCells());
+  const RunConsistency same = compareRuns(cells(run1), cells(run1), exactCells());
   EXPECT_NEAR(same.dcs, 1.0, 1e-12);
-  const RunConsistency c = compareRuns(run1, run2, exactCells());
+  const RunConsistency c = compareRuns(cells(run1), cells(run2), exactCells());
   EXPECT_EQ(c.matched, 2u);
   EXPECT_NEAR(c.dcs, 0.5 * (2.0 * 800 / 2400 + 1.0), 1e-12);
   // A room found in one run only counts as 0.
-  const RunConsistency missing = compareRuns(run1, {run1[0]}, exactCells());
+  const RunConsistency missing = compareRuns(cells(run1), cells({run1[0]}), exactCells());
   EXPECT_NEAR(missing.dcs, 0.5, 1e-12);
   EXPECT_NEAR(missing.matched_share, 0.5, 1e-12);
 
   // Counts 2, 2, 4: N_room 2.67, sigma_room 0.943 (population standard deviation).
   const std::vector<RoomNode> four = {estimated(0, 0, 2, 0, 4), estimated(1, 2, 4, 0, 4),
                                       estimated(2, 4, 6, 0, 4), estimated(3, 6, 8, 0, 4)};
-  const TrialSummary s = summarizeTrials({run1, run1, four}, exactCells());
+  const TrialSummary s = summarizeTrials({cells(run1), cells(run1), cells(four)}, exactCells());
   EXPECT_NEAR(s.n_room, 8.0 / 3.0, 1e-12);
   EXPECT_NEAR(s.sigma_room, 0.9428, 1e-4);
   EXPECT_GT(s.dcs, 0.3);

@@ -39,6 +39,25 @@ TEST(RoomsExtraction, FourWallRoomIsBoundedByItsWalls) {
   for (int n : res.adjacent_points) EXPECT_GT(n, 0);
 }
 
+TEST(RoomsExtraction, FreeSpaceThatLeakedThroughADoorStaysOutOfTheRoom) {
+  // The room's region ran on through its door into the corridor beyond its y = 4 wall.
+  const WallMap walls = test::twoRoomsAndCorridor().wallMap();
+  const DominantAxes axes = estimateDominantAxes(walls);
+  const std::vector<Eigen::Vector3d> inside = grid(0.5, 4.5, 0.5, 3.5);
+  std::vector<Eigen::Vector3d> region = inside;
+  for (const auto& p : grid(1.5, 3.1, 4.5, 5.3)) region.push_back(p);
+  const auto res = extractRoom(region, walls.landmarks(), axes, RoomExtractionConfig{});
+  ASSERT_TRUE(res.found) << res.reason;
+  EXPECT_EQ(res.room.kind, RoomKind::kRoom);
+  EXPECT_EQ(res.room.free_space.size(), inside.size());
+  for (const auto& p : res.room.free_space) EXPECT_LE(p.y(), 4.3);
+  // A negative margin keeps the whole region.
+  RoomExtractionConfig keep;
+  keep.outside_margin = -1.0;
+  EXPECT_EQ(extractRoom(region, walls.landmarks(), axes, keep).room.free_space.size(),
+            region.size());
+}
+
 TEST(RoomsExtraction, CorridorWithOpenEndsHasOnePair) {
   const WallMap walls = test::twoRoomsAndCorridor().wallMap();
   const auto res = extractRoom(grid(-1.6, 11.6, 4.4, 5.6), walls.landmarks(),

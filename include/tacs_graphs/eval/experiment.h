@@ -39,7 +39,7 @@ struct RunScores {
   double pr_loop = 0.0;
   Pose3 T_world_map = Pose3::Identity();  // the alignment of the map onto the world
   SceneGraph graph;                       // as estimated, map frame
-  std::vector<RoomNode> rooms_in_world;   // the rooms moved onto the world by T_world_map
+  std::vector<RoomRegion> room_regions;   // the rooms' floors in the world frame (by T_world_map)
   RoomMetrics room_metrics;               // against the ground-truth rooms (ground_truth.json)
   WallMetrics wall_metrics;               // the walls against the ground-truth walls
 };

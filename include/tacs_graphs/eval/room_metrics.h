@@ -1,9 +1,11 @@
 // Room segmentation metrics (docs/DESIGN.md "Evaluation", paper Sec. IV-B-2).
 //
 // Regions are compared as rasterised 2D areas on a grid of `cell`: a ground-truth room is the set
-// of cells whose centre lies in its polygon; an estimated room is the set of cells within
-// `point_radius` of its free-space points (so the clearance margin the free space keeps from
-// walls and furniture lowers the Dice of even a perfect segmentation a little).
+// of cells whose centre lies in its polygon; an estimated room is its floor
+// (scene_graph/room_floor.h: its free space extended up to `floor_reach` towards its own walls,
+// never across a wall), or, for a segmenter scored on its own (bench_rooms), the cells within
+// `point_radius` of its free-space points, where the clearance the free space keeps from walls
+// and furniture lowers the Dice of even a perfect segmentation.
 //  - Against ground truth: estimated and ground-truth rooms are matched one-to-one, greedily by
 //    decreasing Dice = 2|A n B| / (|A| + |B|), pairs below `min_dice` never match. Precision =
 //    matched / estimated rooms, recall = matched / ground-truth rooms, F1 their harmonic mean;
@@ -30,12 +32,14 @@ struct RoomMetricsConfig {
   double cell = 0.1;           // raster cell [m]
   double point_radius = 0.25;  // footprint of a free-space point [m]
   double min_dice = 0.5;       // least Dice of a match against ground truth [-]
+  double floor_reach = 1.6;    // RoomFloorConfig::reach_m of the estimated rooms' floors [m]
 
   template <class V>
   void visit(V& v) {
     v("cell", cell);
     v("point_radius", point_radius);
     v("min_dice", min_dice);
+    v("floor_reach", floor_reach);
   }
   /// Throws ConfigError naming the field ("room_metrics.<field>").
   void validate() const;
@@ -50,6 +54,17 @@ CellSet rasterizePoints(const std::vector<Eigen::Vector2d>& points, double cell,
 double dice(const CellSet& a, const CellSet& b);
 /// Area of a region [m^2].
 inline double cellArea(const CellSet& s, double cell) { return s.size() * cell * cell; }
+
+/// An estimated room as the cells it covers.
+struct RoomRegion {
+  uint32_t id = 0;
+  CellSet cells;
+};
+/// Each room of the graph as its floor (scene_graph/room_floor.h), in the graph's frame.
+std::vector<RoomRegion> floorRegions(const SceneGraph& graph, const RoomMetricsConfig& config = {});
+/// Each room as the cells within `point_radius` of its free-space points.
+std::vector<RoomRegion> freeSpaceRegions(const std::vector<RoomNode>& rooms,
+                                         const RoomMetricsConfig& config = {});
 
 struct GroundTruthRoomScore {
   std::string id;
@@ -70,7 +85,7 @@ struct RoomMetrics {
   std::vector<GroundTruthRoomScore> rooms;
 };
 
-RoomMetrics evaluateRooms(const std::vector<RoomNode>& estimated,
+RoomMetrics evaluateRooms(const std::vector<RoomRegion>& estimated,
                           const std::vector<sim::Room>& ground_truth,
                           const RoomMetricsConfig& config = {});
 
@@ -81,7 +96,7 @@ struct RunConsistency {
 };
 
 /// DCS between the rooms of two runs (1 when both runs have no room).
-RunConsistency compareRuns(const std::vector<RoomNode>& a, const std::vector<RoomNode>& b,
+RunConsistency compareRuns(const std::vector<RoomRegion>& a, const std::vector<RoomRegion>& b,
                            const RoomMetricsConfig& config = {});
 
 struct TrialSummary {
@@ -90,7 +105,7 @@ struct TrialSummary {
   double dcs = 0.0;         // mean DCS over all pairs of trials (1 with fewer than two trials)
 };
 
-TrialSummary summarizeTrials(const std::vector<std::vector<RoomNode>>& trials,
+TrialSummary summarizeTrials(const std::vector<std::vector<RoomRegion>>& trials,
                              const RoomMetricsConfig& config = {});
 
 }  // namespace tacs

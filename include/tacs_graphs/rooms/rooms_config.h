@@ -133,6 +133,10 @@ struct RoomExtractionConfig {
   int min_free_space_points = 30;
   /// Share of the free-space points that must lie between a pair of facing walls [-].
   double min_inside_share = 0.6;
+  /// Free space more than this beyond a room's bounding walls (outside the band between each
+  /// facing pair) is no part of the room: a region that leaked through a door into the space
+  /// outside keeps only its part inside the walls. Negative: the room keeps its whole region [m].
+  double outside_margin = 0.3;
   /// Method "tacs": a plane that is no wall bounds a room only when an end of it lies within this
   /// distance of a wall or of a plane anchored so; free-standing furniture bounds none (open-plan
   /// halls, rooms/room_bounds.h). 0: every plane may bound a room, as the voxel baseline keeps
@@ -155,6 +159,7 @@ struct RoomExtractionConfig {
     v("max_corridor_width_m", max_corridor_width);
     v("min_free_space_points", min_free_space_points);
     v("min_inside_share", min_inside_share);
+    v("outside_margin_m", outside_margin);
     v("anchor_distance_m", anchor_distance);
     v("wall_top_margin_m", wall_top_margin);
     v("wall_top_min_share", wall_top_min_share);

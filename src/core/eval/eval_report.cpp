@@ -66,13 +66,13 @@ MethodSummary summarizeRuns(std::vector<std::pair<int, RunScores>> trial_runs) {
   s.trials = runs.size();
   std::vector<double> ate, odom, path, rooms, loops, pr, ld, fgo, wall, rate;
   std::vector<double> precision, recall, f1, room_dice;
-  std::vector<std::vector<RoomNode>> trial_rooms;
+  std::vector<std::vector<RoomRegion>> trial_rooms;
   WallMetrics walls;
   for (const auto& r : runs) {
     walls.walls += r.wall_metrics.walls, walls.correct += r.wall_metrics.correct;
     precision.push_back(r.room_metrics.precision), recall.push_back(r.room_metrics.recall);
     f1.push_back(r.room_metrics.f1), room_dice.push_back(r.room_metrics.mean_dice);
-    trial_rooms.push_back(r.rooms_in_world);
+    trial_rooms.push_back(r.room_regions);
     ate.push_back(r.ate_m), odom.push_back(r.odom_ate_m), path.push_back(r.path_m);
     rooms.push_back(r.rooms), loops.push_back(r.loops), ld.push_back(r.t_ld_s);
     fgo.push_back(r.t_fgo_s), wall.push_back(r.wall_time_s);
@@ -223,8 +223,8 @@ void writeEvalReport(const std::string& out_dir, const std::vector<EvalRun>& run
   };
 
   md << "## Table I: scene graph consistency\n\n"
-     << "DCS: mean over pairs of trials of the Dice of matched rooms over max(N_a, N_b) (eq. "
-        "5).\n\n"
+     << "DCS: mean over pairs of trials of the Dice of matched rooms' floors over max(N_a, "
+        "N_b) (eq. 5).\n\n"
      << "| World | Method | trials | N_room | sigma_room | DCS (%) | t_FGO (s) |\n"
      << "|---|---|---|---|---|---|---|\n";
   rows("rooms", [](const MethodSummary& s) {
@@ -234,7 +234,8 @@ void writeEvalReport(const std::string& out_dir, const std::vector<EvalRun>& run
   });
 
   md << "\n## Rooms and walls against ground truth\n\n"
-     << "Estimated and ground-truth rooms matched one-to-one by Dice of their 2D free space "
+     << "Estimated and ground-truth rooms matched one-to-one by Dice of their 2D floors (the "
+        "free space grown up to 1.6 m towards the room's walls, scene_graph/room_floor.h) "
         "(>= 0.5); Dice: mean over ground-truth rooms, unmatched ones count 0. Wall precision: "
         "share of the scene graph's walls lying on a wall of the world (within 10 deg and "
         "0.25 m, half their length over it), not on furniture.\n\n"

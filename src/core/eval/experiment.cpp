@@ -82,9 +82,9 @@ RunScores scoreRunFolder(const std::string& dir) {
   s.pr_loop = loops.precision();
   // Rooms are scored in the world frame: the map frame starts at the robot's first pose.
   const SceneGraph in_world = transformSceneGraph(s.graph, s.T_world_map);
-  for (const auto& [id, room] : in_world.rooms) s.rooms_in_world.push_back(room);
+  s.room_regions = floorRegions(in_world);
   const sim::GroundTruth truth = sim::readGroundTruth(dir + "/ground_truth.json");
-  s.room_metrics = evaluateRooms(s.rooms_in_world, truth.rooms);
+  s.room_metrics = evaluateRooms(s.room_regions, truth.rooms);
   s.wall_metrics = evaluateWalls(in_world, truth.walls);
   return s;
 }

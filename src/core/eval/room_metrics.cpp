@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "tacs_graphs/common/config.h"
+#include "tacs_graphs/scene_graph/room_floor.h"
 
 namespace tacs {
 
@@ -18,10 +19,6 @@ size_t intersection(const CellSet& a, const CellSet& b) {
   size_t n = 0;
   for (int64_t c : small) n += large.count(c);
   return n;
-}
-
-CellSet regionOf(const RoomNode& room, const RoomMetricsConfig& config) {
-  return rasterizePoints(room.free_space, config.cell, config.point_radius);
 }
 
 // One-to-one greedy matching by decreasing score; pairs with score < min never match.
@@ -52,6 +49,30 @@ void RoomMetricsConfig::validate() const {
   requireConfig(cell > 0.0, "room_metrics.cell", "must be > 0");
   requireConfig(point_radius >= 0.0, "room_metrics.point_radius", "must be >= 0");
   requireConfig(min_dice > 0.0 && min_dice <= 1.0, "room_metrics.min_dice", "must be in (0, 1]");
+  requireConfig(floor_reach >= 0.0, "room_metrics.floor_reach", "must be >= 0");
+}
+
+std::vector<RoomRegion> floorRegions(const SceneGraph& graph, const RoomMetricsConfig& config) {
+  config.validate();
+  std::vector<RoomRegion> out;
+  for (const auto& [id, cells] :
+       roomFloors(graph, {config.cell, config.point_radius, config.floor_reach})) {
+    RoomRegion r;
+    r.id = id;
+    for (const auto& c : cells) r.cells.insert(key(c.x(), c.y()));
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+std::vector<RoomRegion> freeSpaceRegions(const std::vector<RoomNode>& rooms,
+                                         const RoomMetricsConfig& config) {
+  config.validate();
+  std::vector<RoomRegion> out;
+  for (const auto& room : rooms) {
+    out.push_back({room.id, rasterizePoints(room.free_space, config.cell, config.point_radius)});
+  }
+  return out;
 }
 
 CellSet rasterizePolygon(const sim::Polygon2& polygon, double cell) {
@@ -95,23 +116,22 @@ double dice(const CellSet& a, const CellSet& b) {
   return 2.0 * intersection(a, b) / static_cast<double>(a.size() + b.size());
 }
 
-RoomMetrics evaluateRooms(const std::vector<RoomNode>& estimated,
+RoomMetrics evaluateRooms(const std::vector<RoomRegion>& estimated,
                           const std::vector<sim::Room>& ground_truth,
                           const RoomMetricsConfig& config) {
   config.validate();
   RoomMetrics m;
   m.estimated = estimated.size();
   m.ground_truth = ground_truth.size();
-  std::vector<CellSet> est, gt;
-  for (const auto& r : estimated) est.push_back(regionOf(r, config));
+  std::vector<CellSet> gt;
   for (const auto& r : ground_truth) gt.push_back(rasterizePolygon(r.polygon, config.cell));
-  std::vector<std::vector<double>> score(gt.size(), std::vector<double>(est.size(), 0.0));
+  std::vector<std::vector<double>> score(gt.size(), std::vector<double>(estimated.size(), 0.0));
   for (size_t g = 0; g < gt.size(); ++g) {
     GroundTruthRoomScore s;
     s.id = ground_truth[g].id;
     s.kind = ground_truth[g].kind;
-    for (size_t e = 0; e < est.size(); ++e) {
-      score[g][e] = dice(gt[g], est[e]);
+    for (size_t e = 0; e < estimated.size(); ++e) {
+      score[g][e] = dice(gt[g], estimated[e].cells);
       s.best_dice = std::max(s.best_dice, score[g][e]);
     }
     m.rooms.push_back(s);
@@ -130,7 +150,7 @@ RoomMetrics evaluateRooms(const std::vector<RoomNode>& estimated,
   return m;
 }
 
-RunConsistency compareRuns(const std::vector<RoomNode>& a, const std::vector<RoomNode>& b,
+RunConsistency compareRuns(const std::vector<RoomRegion>& a, const std::vector<RoomRegion>& b,
                            const RoomMetricsConfig& config) {
   config.validate();
   RunConsistency out;
@@ -139,12 +159,9 @@ RunConsistency compareRuns(const std::vector<RoomNode>& a, const std::vector<Roo
     out.matched_share = 1.0;
     return out;
   }
-  std::vector<CellSet> ra, rb;
-  for (const auto& r : a) ra.push_back(regionOf(r, config));
-  for (const auto& r : b) rb.push_back(regionOf(r, config));
-  std::vector<std::vector<double>> score(ra.size(), std::vector<double>(rb.size(), 0.0));
-  for (size_t i = 0; i < ra.size(); ++i) {
-    for (size_t j = 0; j < rb.size(); ++j) score[i][j] = dice(ra[i], rb[j]);
+  std::vector<std::vector<double>> score(a.size(), std::vector<double>(b.size(), 0.0));
+  for (size_t i = 0; i < a.size(); ++i) {
+    for (size_t j = 0; j < b.size(); ++j) score[i][j] = dice(a[i].cells, b[j].cells);
   }
   const double n = static_cast<double>(std::max(a.size(), b.size()));
   size_t good = 0;
@@ -158,7 +175,7 @@ RunConsistency compareRuns(const std::vector<RoomNode>& a, const std::vector<Roo
   return out;
 }
 
-TrialSummary summarizeTrials(const std::vector<std::vector<RoomNode>>& trials,
+TrialSummary summarizeTrials(const std::vector<std::vector<RoomRegion>>& trials,
                              const RoomMetricsConfig& config) {
   TrialSummary s;
   if (trials.empty()) return s;

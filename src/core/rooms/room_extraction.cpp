@@ -163,6 +163,22 @@ RoomExtractionResult extractRoom(const std::vector<Eigen::Vector3d>& free_space,
   }
   room.axes_yaw = axes.yaw;
   room.free_space = free_space;
+  if (config.outside_margin >= 0.0) {
+    // Keep the region's part between each facing pair (a leak through a door stays outside).
+    const double m = config.outside_margin;
+    const auto between = [&](const Eigen::Vector3d& p, const Pair& pair, int low, int high,
+                             const Eigen::Vector2d& axis) {
+      const double u = p.head<2>().dot(axis);
+      return u >= candidates[low][pair.low].position - m &&
+             u <= candidates[high][pair.high].position + m;
+    };
+    room.free_space.clear();
+    for (const auto& p : free_space) {
+      if (has_x && !between(p, px, kXPlus, kXMinus, x_axis)) continue;
+      if (has_y && !between(p, py, kYPlus, kYMinus, y_axis)) continue;
+      room.free_space.push_back(p);
+    }
+  }
   if (has_x) {
     room.walls[kXPlus] = static_cast<int>(candidates[kXPlus][px.low].id);
     room.walls[kXMinus] = static_cast<int>(candidates[kXMinus][px.high].id);

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "tacs_graphs/scene_graph/room_floor.h"
+
 namespace tacs::viz {
 
 Rgba roomColor(uint32_t room_id, uint8_t alpha) {
@@ -39,6 +41,17 @@ void drawSceneGraph(const SceneGraph& graph, const PointCloud* map_points, Canva
     for (const auto& p : map_points->points) {
       if (p.z < 0.3f || p.z > 2.0f) continue;
       canvas->fillCircle(Eigen::Vector2d(p.x, p.y), 0.03, {160, 160, 160, 255});
+    }
+  }
+  // Each room's floor (faint) under its free space.
+  const RoomFloorConfig floor_config;
+  const double cell = floor_config.cell_m;
+  for (const auto& [id, cells] : roomFloors(graph, floor_config)) {
+    for (const auto& c : cells) {
+      const Eigen::Vector2d lo = c.cast<double>() * cell;
+      canvas->fillPolygon({lo, lo + Eigen::Vector2d(cell, 0), lo + Eigen::Vector2d(cell, cell),
+                           lo + Eigen::Vector2d(0, cell)},
+                          roomColor(id, 35));
     }
   }
   for (const auto& [id, room] : graph.rooms) {
