@@ -51,6 +51,13 @@ TEST(RoomsExtraction, FreeSpaceThatLeakedThroughADoorStaysOutOfTheRoom) {
   EXPECT_EQ(res.room.kind, RoomKind::kRoom);
   EXPECT_EQ(res.room.free_space.size(), inside.size());
   for (const auto& p : res.room.free_space) EXPECT_LE(p.y(), 4.3);
+  // Space beside the ends of the room's walls (an L-shaped room's leg) is not behind them.
+  std::vector<Eigen::Vector3d> with_leg = inside;
+  const std::vector<Eigen::Vector3d> leg = grid(-1.5, -0.7, 4.5, 5.3);
+  with_leg.insert(with_leg.end(), leg.begin(), leg.end());
+  EXPECT_EQ(
+      extractRoom(with_leg, walls.landmarks(), axes, RoomExtractionConfig{}).room.free_space.size(),
+      with_leg.size());
   // A negative margin keeps the whole region.
   RoomExtractionConfig keep;
   keep.outside_margin = -1.0;

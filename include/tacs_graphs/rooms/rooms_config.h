@@ -133,9 +133,9 @@ struct RoomExtractionConfig {
   int min_free_space_points = 30;
   /// Share of the free-space points that must lie between a pair of facing walls [-].
   double min_inside_share = 0.6;
-  /// Free space more than this beyond a room's bounding walls (outside the band between each
-  /// facing pair) is no part of the room: a region that leaked through a door into the space
-  /// outside keeps only its part inside the walls. Negative: the room keeps its whole region [m].
+  /// Free space more than this behind one of a room's own walls (within the wall's extent) is no
+  /// part of the room: a region that leaked through a door in the wall keeps only its part
+  /// inside. Space beside a wall's end stays (an L-shaped room). Negative: keep it all [m].
   double outside_margin = 0.3;
   /// Method "tacs": a plane that is no wall bounds a room only when an end of it lies within this
   /// distance of a wall or of a plane anchored so; free-standing furniture bounds none (open-plan

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "tacs_graphs/walls/wall_segment.h"
 
@@ -97,6 +98,73 @@ Pair bestPair(const std::vector<Candidate>& low, const std::vector<Candidate>& h
   return best;
 }
 
+constexpr double kDoorGap = 2.0;        // collinear wall pieces this close frame one door [m]
+constexpr double kCollinearDist = 0.2;  // largest offset between pieces of one wall line [m]
+
+// Extent [lo, hi] along wall w's axis (from its first endpoint) of its wall line: w with the
+// collinear pieces of the same face reached over gaps up to a door wide, since a door splits a
+// wall into pieces and the room keeps only one of them.
+std::pair<double, double> wallLineExtent(const WallLandmark& w,
+                                         const std::map<uint32_t, WallLandmark>& landmarks) {
+  const Eigen::Vector2d axis = wallAxis(w.normal), n = w.normal.head<2>();
+  double lo = 0.0, hi = w.length();
+  for (bool grown = true; grown;) {
+    grown = false;
+    for (const auto& [id, o] : landmarks) {
+      if (o.normal.dot(w.normal) < std::cos(10.0 * M_PI / 180.0)) continue;
+      if (std::abs(n.dot(o.endpoints[0]) + w.d) > kCollinearDist ||
+          std::abs(n.dot(o.endpoints[1]) + w.d) > kCollinearDist)
+        continue;
+      const double t0 = (o.endpoints[0] - w.endpoints[0]).dot(axis);
+      const double t1 = (o.endpoints[1] - w.endpoints[0]).dot(axis);
+      const double a = std::min(t0, t1), b = std::max(t0, t1);
+      if (b < lo - kDoorGap || a > hi + kDoorGap || (a >= lo && b <= hi)) continue;
+      lo = std::min(lo, a);
+      hi = std::max(hi, b);
+      grown = true;
+    }
+  }
+  return {lo, hi};
+}
+
+// The region's points that are not behind one of the room's own walls: a point more than the
+// margin behind a wall line, within its extent, reached the region through a door in it.
+// Points beside a wall's end stay, so an L-shaped room keeps its leg past a shorter wall. A
+// corridor is the band between its two walls: past a wall's end lies the next corridor (a
+// corner), so there the line has no ends.
+std::vector<Eigen::Vector3d> insideOwnWalls(const std::vector<Eigen::Vector3d>& free_space,
+                                            const RoomObservation& room,
+                                            const std::map<uint32_t, WallLandmark>& landmarks,
+                                            const RoomExtractionConfig& c) {
+  struct Line {
+    const WallLandmark* wall;
+    double lo, hi;
+  };
+  std::vector<Line> lines;
+  for (int id : room.walls) {
+    const auto it = id >= 0 ? landmarks.find(static_cast<uint32_t>(id)) : landmarks.end();
+    if (it == landmarks.end()) continue;
+    if (room.kind == RoomKind::kCorridor) {
+      const double inf = std::numeric_limits<double>::infinity();
+      lines.push_back({&it->second, -inf, inf});
+    } else {
+      const auto [lo, hi] = wallLineExtent(it->second, landmarks);
+      lines.push_back({&it->second, lo, hi});
+    }
+  }
+  std::vector<Eigen::Vector3d> kept;
+  kept.reserve(free_space.size());
+  for (const auto& p : free_space) {
+    const bool behind = std::any_of(lines.begin(), lines.end(), [&](const Line& l) {
+      if (l.wall->normal.dot(p) + l.wall->d >= -c.outside_margin) return false;
+      const double t = (p.head<2>() - l.wall->endpoints[0]).dot(wallAxis(l.wall->normal));
+      return t >= l.lo && t <= l.hi;
+    });
+    if (!behind) kept.push_back(p);
+  }
+  return kept;
+}
+
 Eigen::Vector2d axisOf(double yaw, bool x) {
   return x ? Eigen::Vector2d(std::cos(yaw), std::sin(yaw))
            : Eigen::Vector2d(-std::sin(yaw), std::cos(yaw));
@@ -163,22 +231,6 @@ RoomExtractionResult extractRoom(const std::vector<Eigen::Vector3d>& free_space,
   }
   room.axes_yaw = axes.yaw;
   room.free_space = free_space;
-  if (config.outside_margin >= 0.0) {
-    // Keep the region's part between each facing pair (a leak through a door stays outside).
-    const double m = config.outside_margin;
-    const auto between = [&](const Eigen::Vector3d& p, const Pair& pair, int low, int high,
-                             const Eigen::Vector2d& axis) {
-      const double u = p.head<2>().dot(axis);
-      return u >= candidates[low][pair.low].position - m &&
-             u <= candidates[high][pair.high].position + m;
-    };
-    room.free_space.clear();
-    for (const auto& p : free_space) {
-      if (has_x && !between(p, px, kXPlus, kXMinus, x_axis)) continue;
-      if (has_y && !between(p, py, kYPlus, kYMinus, y_axis)) continue;
-      room.free_space.push_back(p);
-    }
-  }
   if (has_x) {
     room.walls[kXPlus] = static_cast<int>(candidates[kXPlus][px.low].id);
     room.walls[kXMinus] = static_cast<int>(candidates[kXMinus][px.high].id);
@@ -190,6 +242,10 @@ RoomExtractionResult extractRoom(const std::vector<Eigen::Vector3d>& free_space,
     room.walls[kYMinus] = static_cast<int>(candidates[kYMinus][py.high].id);
     result.adjacent_points[kYPlus] = candidates[kYPlus][py.low].points;
     result.adjacent_points[kYMinus] = candidates[kYMinus][py.high].points;
+  }
+  if (config.outside_margin >= 0.0) {
+    auto inside = insideOwnWalls(free_space, room, landmarks, config);
+    if (!inside.empty()) room.free_space = std::move(inside);
   }
   // Start from the free-space centre so a corridor's along-wall coordinate is defined.
   const Eigen::Vector2d c = room.freeSpaceCentroid();
