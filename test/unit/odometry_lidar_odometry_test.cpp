@@ -204,6 +204,29 @@ std::string validationError(const OdometryConfig& config) {
   return "";
 }
 
+// Drives along the middle of an empty box room, which looks the same turned by 180 deg, with a
+// recovery tried on every scan; returns the largest yaw error over the scans.
+double worstYawInASymmetricRoom(double min_gain) {
+  test::BoxRoom room;
+  room.obstacles.clear();
+  OdometryConfig config;
+  config.recovery_relative_fit = 1.0;  // every scan fits below its predecessors' mean at times
+  config.recovery_min_gain = min_gain;
+  LidarOdometry odometry{config};
+  const auto pose = [](int i) { return poseFromXyzRpy(4.0 + 0.05 * i, 3.5, 0.5, 0.0, 0.0, 0.0); };
+  double worst = 0.0;
+  for (int i = 0; i < 40; ++i) {
+    const OdometryResult r = odometry.process(100.0 + 0.1 * i, test::renderScan(room, pose(i), i));
+    if (r.ok) worst = std::max(worst, rotationErrorDeg(r.T_odom_base, pose(0).inverse() * pose(i)));
+  }
+  return worst;
+}
+
+TEST(LidarOdometry, ATurnedViewThatFitsAsWellNeverFlipsThePose) {
+  EXPECT_GT(worstYawInASymmetricRoom(0.0), 90.0);  // the trap: any better fit wins, and flips
+  EXPECT_LT(worstYawInASymmetricRoom(OdometryConfig().recovery_min_gain), 1.0);
+}
+
 TEST(OdometryConfig, ValidateNamesTheBadField) {
   EXPECT_EQ(validationError(OdometryConfig()), "");
   OdometryConfig config;
@@ -227,6 +250,9 @@ TEST(OdometryConfig, ValidateNamesTheBadField) {
   config.gicp.robust_plane_distance_m = -0.05;
   EXPECT_NE(validationError(config).find("odometry.gicp.robust_plane_distance_m"),
             std::string::npos);
+  config = OdometryConfig();
+  config.recovery_min_gain = -0.1;
+  EXPECT_NE(validationError(config).find("odometry.recovery_min_gain"), std::string::npos);
 }
 
 }  // namespace

@@ -77,6 +77,9 @@ struct OdometryConfig {
   double recovery_min_fit = 0.5;  // share of fitting points below which the scan is re-aligned
   // ... or below this share of the recent scans' fit (running mean)
   double recovery_relative_fit = 0.85;
+  // A recovery replaces a registration within the limits only when it fits this much larger a
+  // share of the scan (one outside the limits is replaced by any better fit) [-].
+  double recovery_min_gain = 0.05;
   // Yaw offsets [deg] tried from the guess when recovering (about the base z axis), each
   // aligned coarse to fine and scored by its share of fitting points.
   std::vector<double> recovery_yaw_deg = {0.0, 30.0, -30.0, 60.0, -60.0, 90.0, -90.0, 180.0};
@@ -120,6 +123,7 @@ struct OdometryConfig {
     v("fit_distance_m", fit_distance_m);
     v("recovery_min_fit", recovery_min_fit);
     v("recovery_relative_fit", recovery_relative_fit);
+    v("recovery_min_gain", recovery_min_gain);
     v("recovery_yaw_deg", recovery_yaw_deg);
     v("recovery_voxel_m", recovery_voxel_m);
     v("recovery_coarse_iterations", recovery_coarse_iterations);

@@ -46,6 +46,8 @@ void OdometryConfig::validate() const {
                 "must be >= 1");
   requireConfig(recovery_relative_fit >= 0.0 && recovery_relative_fit <= 1.0,
                 "odometry.recovery_relative_fit", "must be in [0, 1]");
+  requireConfig(recovery_min_gain >= 0.0 && recovery_min_gain <= 1.0, "odometry.recovery_min_gain",
+                "must be in [0, 1]");
   requireConfig(level_max_tilt_deg > 0.0 && level_max_tilt_deg < 90.0,
                 "odometry.level_max_tilt_deg", "must be in (0, 90)");
   point_times.validate();
@@ -273,7 +275,11 @@ GicpResult LidarOdometry::registerScan(const GicpCloud::ConstPtr& scan, const Po
   if (result->fit < min_fit || !withinLimits(guess, reg.T_target_source)) {
     GicpResult recovered = recoverFromHypotheses(cloud, scan, guess);
     const double fit = fitOf(scan, recovered.T_target_source);
-    if (fit > result->fit) {
+    // A plausible registration (within the motion limits) that merely fits a little less than
+    // usual is kept unless a hypothesis fits clearly better: in repetitive stacks and aisles the
+    // view turned by 180 deg fits about as well, and a tie must not flip the map.
+    const double gain = withinLimits(guess, reg.T_target_source) ? config_.recovery_min_gain : 0.0;
+    if (fit > result->fit + gain) {
       reg = recovered;
       result->fit = fit;
       result->recovered = true;
