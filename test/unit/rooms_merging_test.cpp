@@ -172,6 +172,53 @@ TEST(RoomsMerging, MappedRoomsMergeWhenOneComesToLieInsideTheOther) {
   EXPECT_EQ(map.rooms().size(), 2u);
 }
 
+// A four-wall room over [x0,x1] x [y0,y1] with wall ids {base, base+1, base+2, base+3}.
+RoomObservation room(double x0, double x1, double y0, double y1, int base) {
+  RoomObservation o = yCorridor(x0, x1, y0, y1, base, base + 1);
+  o.kind = RoomKind::kRoom;
+  o.walls = {base, base + 1, base + 2, base + 3};
+  return o;
+}
+
+TEST(RoomsMerging, TwoLegsOfAnOpenFloorWithNoWallBetweenAreOneRoom) {
+  // An L-shaped open floor seen from its main part, then from its leg: different walls and
+  // centres, 5/8 of the leg's view inside the main one (under nested_overlap).
+  const RoomObservation main_part = room(0, 20, 0, 10, 1);
+  const RoomObservation leg = room(10, 20, 0, 16, 11);
+  WallLandmark across;  // a plane between the two views' centres (10, 5) and (15, 8)
+  across.id = 30;
+  across.normal = Eigen::Vector3d(0, 1, 0);
+  across.d = -6.5;
+  across.endpoints[0] = {0.0, 6.5};
+  across.endpoints[1] = {20.0, 6.5};
+  const std::map<uint32_t, WallLandmark> with_plane = {{30, across}};
+  {
+    RoomMap map;
+    const auto a = map.addObservation(main_part, kNoWalls);
+    const auto b = map.addObservation(leg, kNoWalls);
+    EXPECT_FALSE(b.created);
+    EXPECT_EQ(b.room_id, a.room_id);
+  }
+  {  // The plane is free-standing furniture: it bounds no room, so it separates nothing.
+    RoomMap map;
+    map.addObservation(main_part, with_plane, &kNoWalls);
+    EXPECT_FALSE(map.addObservation(leg, with_plane, &kNoWalls).created);
+  }
+  {  // A wall between them: two rooms.
+    RoomMap map;
+    map.addObservation(main_part, with_plane);
+    EXPECT_TRUE(map.addObservation(leg, with_plane).created);
+    EXPECT_EQ(map.rooms().size(), 2u);
+  }
+  {  // Below open_overlap they stay apart even with no wall between.
+    RoomMergingConfig config;
+    config.open_overlap = 0.7;
+    RoomMap map(config);
+    map.addObservation(main_part, kNoWalls);
+    EXPECT_TRUE(map.addObservation(leg, kNoWalls).created);
+  }
+}
+
 TEST(RoomsMerging, AViewSpanningTwoRoomsAWallSeparatesIsToldApart) {
   // A corridor (y 0..2) and a room beside it (y 2.2..10) with their wall y = 2.1 between them
   // (a door in it further along); a view holding both is no room of its own.

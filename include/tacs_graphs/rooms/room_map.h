@@ -7,8 +7,9 @@
 // walls (one landmark, or landmarks of one plane when the views touch or are corridors with no
 // wall between them) on every axis both define also merge without overlap (a long corridor or a
 // hall walked in separate pieces), and so does a view lying almost entirely inside a mapped room
-// (`nested_overlap`, a first partial view). Otherwise perpendicular corridors, which share no
-// axis, never merge. Mapped rooms merge with each other by the same nesting rule when, after an
+// (`nested_overlap`, a first partial view), or sharing `open_overlap` of it with no wall between
+// the centres (two legs of an L-shaped open floor). Otherwise perpendicular corridors, which share
+// no axis, never merge. Mapped rooms merge with each other by the same nesting rule when, after an
 // observation grew one of them, the smaller lies almost entirely inside the larger (both views
 // of one hall grew towards each other); the larger keeps its id. The mapped room takes over the
 // observation's free space and keyframes, adopts a wall pair it lacked (a corridor re-detected as a
@@ -64,9 +65,12 @@ class RoomMap {
   /// Validates the config (throws ConfigError).
   explicit RoomMap(const RoomMergingConfig& config = {});
 
-  /// TACS room merging; `landmarks` give the current wall planes for the merged room's centre.
+  /// TACS room merging; `landmarks` give the current wall planes for the merged room's centre,
+  /// `bounding` (default: `landmarks`) the planes that may stand between two views of a room
+  /// (free-standing furniture does not, rooms/room_bounds.h).
   RoomAssociation addObservation(const RoomObservation& observation,
-                                 const std::map<uint32_t, WallLandmark>& landmarks);
+                                 const std::map<uint32_t, WallLandmark>& landmarks,
+                                 const std::map<uint32_t, WallLandmark>* bounding = nullptr);
 
   /// A free-space region only free-standing furniture bounds (an aisle between racks, whose faces
   /// bound no room: rooms/room_bounds.h) joins the mapped room it touches along most cells (at
@@ -110,13 +114,18 @@ class RoomMap {
     Eigen::Vector2d midpoint;
   };
   uint32_t create(const RoomObservation& observation);
+  /// Whether two views sharing `overlap` of the smaller's cells are one space: nested, or
+  /// sharing open_overlap with no room-bounding plane between their centres.
+  bool sameOpenSpace(double overlap, const RoomObservation& a, const RoomObservation& b,
+                     const std::map<uint32_t, WallLandmark>& landmarks) const;
   RoomAssociation mergeOrCreate(MappedRoom* match, const RoomObservation& observation,
                                 bool union_free_space,
                                 const std::map<uint32_t, WallLandmark>& landmarks);
   void mergeInto(MappedRoom* mapped, const RoomObservation& observation, bool union_free_space,
                  const std::map<uint32_t, WallLandmark>& landmarks, RoomAssociation* out);
   /// Merges mapped rooms nested in (or around) room out->room_id into the larger of each pair.
-  void absorbNestedRooms(const std::map<uint32_t, WallLandmark>& landmarks, RoomAssociation* out);
+  void absorbNestedRooms(const std::map<uint32_t, WallLandmark>& landmarks,
+                         const std::map<uint32_t, WallLandmark>& bounding, RoomAssociation* out);
   std::unordered_set<int64_t> cellsOf(const std::vector<Eigen::Vector3d>& pts) const;
   void remember(const std::map<uint32_t, WallLandmark>& landmarks);
   bool sameWall(int a, int b) const;

@@ -178,6 +178,9 @@ struct RoomMergingConfig {
   /// A room whose cells lie in another by at least this share is merged into it whatever its
   /// centre (a first, partial view of a room whose walls were not all seen yet) [-].
   double nested_overlap = 0.8;
+  /// Rooms sharing this share of the smaller one's cells, with no room-bounding plane between
+  /// their centres, are one room (views of an L-shaped open-plan floor from its two legs) [-].
+  double open_overlap = 0.5;
 
   template <class V>
   void visit(V& v) {
@@ -185,6 +188,7 @@ struct RoomMergingConfig {
     v("min_overlap", min_overlap);
     v("max_axis_distance_m", max_axis_distance);
     v("nested_overlap", nested_overlap);
+    v("open_overlap", open_overlap);
   }
   void validate() const;
 };

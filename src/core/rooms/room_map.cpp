@@ -198,8 +198,10 @@ RoomAssociation RoomMap::mergeOrCreate(MappedRoom* match, const RoomObservation&
 }
 
 RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
-                                        const std::map<uint32_t, WallLandmark>& landmarks) {
+                                        const std::map<uint32_t, WallLandmark>& landmarks,
+                                        const std::map<uint32_t, WallLandmark>* bounding) {
   remember(landmarks);
+  const auto& separating = bounding ? *bounding : landmarks;
   const auto obs_cells = cellsOf(observation.free_space);
   MappedRoom* best = nullptr;
   double best_overlap = 0.0;
@@ -241,7 +243,7 @@ RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
                              same_pair(0, 1, true) && same_pair(2, 3, true));
     // A view lying almost entirely inside the other is the same room whatever walls the
     // smaller one picked (a first, partial view of a room).
-    const bool nested = overlap >= config_.nested_overlap;
+    const bool nested = sameOpenSpace(overlap, m.room, observation, separating);
     const double score = same_walls && aligned ? std::max(overlap, 1.0) : overlap;
     const bool match = nested || (aligned && (overlap >= config_.min_overlap || same_walls));
     if (match && score > best_overlap) {
@@ -250,7 +252,7 @@ RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
     }
   }
   RoomAssociation out = mergeOrCreate(best, observation, /*union_free_space=*/true, landmarks);
-  absorbNestedRooms(landmarks, &out);
+  absorbNestedRooms(landmarks, separating, &out);
   return out;
 }
 
@@ -311,8 +313,17 @@ std::optional<RoomAssociation> RoomMap::addUnbounded(
   joined.axes_yaw = best->room.axes_yaw;
   RoomAssociation out;
   mergeInto(best, joined, /*union_free_space=*/true, landmarks, &out);
-  absorbNestedRooms(landmarks, &out);
+  absorbNestedRooms(landmarks, bounding, &out);
   return out;
+}
+
+bool RoomMap::sameOpenSpace(double overlap, const RoomObservation& a, const RoomObservation& b,
+                            const std::map<uint32_t, WallLandmark>& landmarks) const {
+  if (overlap >= config_.nested_overlap) return true;
+  // Views of an L- or T-shaped open-plan floor from different legs pick different walls and
+  // centres yet share much of their free space with no wall between them.
+  return overlap >= config_.open_overlap &&
+         !wallBetween(a.center.head<2>(), b.center.head<2>(), landmarks);
 }
 
 bool RoomMap::spansSeparateRooms(const RoomObservation& observation,
@@ -337,6 +348,7 @@ bool RoomMap::spansSeparateRooms(const RoomObservation& observation,
 }
 
 void RoomMap::absorbNestedRooms(const std::map<uint32_t, WallLandmark>& landmarks,
+                                const std::map<uint32_t, WallLandmark>& bounding,
                                 RoomAssociation* out) {
   for (bool merged = true; merged;) {
     merged = false;
@@ -344,7 +356,8 @@ void RoomMap::absorbNestedRooms(const std::map<uint32_t, WallLandmark>& landmark
     for (auto& [id, other] : rooms_) {
       if (id == grown.id) continue;
       if (other.cells.empty() || grown.cells.empty() ||
-          smallerShare(other.cells, grown.cells) < config_.nested_overlap) {
+          !sameOpenSpace(smallerShare(other.cells, grown.cells), other.room, grown.room,
+                         bounding)) {
         continue;
       }
       const bool other_smaller = other.cells.size() <= grown.cells.size();

@@ -96,10 +96,10 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
   extracted.room.keyframe_ids = std::move(keyframe_ids);
   const bool by_center_distance = config_.method == RoomMethod::kVoxel &&
                                   config_.voxel.merging == VoxelMerging::kCenterDistance;
-  const RoomAssociation a = by_center_distance
-                                ? room_map_.addByCenterDistance(extracted.room, walls.landmarks(),
-                                                                config_.voxel.merge_distance)
-                                : room_map_.addObservation(extracted.room, walls.landmarks());
+  const RoomAssociation a =
+      by_center_distance ? room_map_.addByCenterDistance(extracted.room, walls.landmarks(),
+                                                         config_.voxel.merge_distance)
+                         : room_map_.addObservation(extracted.room, walls.landmarks(), &bounding);
   result->observations.push_back(std::move(extracted.room));
   result->associations.push_back(a);
   if (!unbounded_.empty()) joinUnboundedRegions(walls, bounding, result);

@@ -59,6 +59,7 @@ void RoomMergingConfig::validate() const {
   requireConfig(max_axis_distance > 0.0, p + "max_axis_distance_m", "must be > 0");
   requireConfig(nested_overlap > 0.0 && nested_overlap <= 1.0, p + "nested_overlap",
                 "must be in (0, 1]");
+  requireConfig(open_overlap > 0.0 && open_overlap <= 1.0, p + "open_overlap", "must be in (0, 1]");
 }
 
 void RoomsConfig::validate() const {
