@@ -46,7 +46,8 @@ TEST(RoomsExtraction, FreeSpaceThatLeakedThroughADoorStaysOutOfTheRoom) {
   const std::vector<Eigen::Vector3d> inside = grid(0.5, 4.5, 0.5, 3.5);
   std::vector<Eigen::Vector3d> region = inside;
   for (const auto& p : grid(1.5, 3.1, 4.5, 5.3)) region.push_back(p);
-  const auto res = extractRoom(region, walls.landmarks(), axes, RoomExtractionConfig{});
+  const std::vector<Doorway> doorways = findDoorways(walls.landmarks(), TacsFreeSpaceConfig{});
+  const auto res = extractRoom(region, walls.landmarks(), axes, RoomExtractionConfig{}, doorways);
   ASSERT_TRUE(res.found) << res.reason;
   EXPECT_EQ(res.room.kind, RoomKind::kRoom);
   EXPECT_EQ(res.room.free_space.size(), inside.size());
@@ -61,7 +62,7 @@ TEST(RoomsExtraction, FreeSpaceThatLeakedThroughADoorStaysOutOfTheRoom) {
   // A negative margin keeps the whole region.
   RoomExtractionConfig keep;
   keep.outside_margin = -1.0;
-  EXPECT_EQ(extractRoom(region, walls.landmarks(), axes, keep).room.free_space.size(),
+  EXPECT_EQ(extractRoom(region, walls.landmarks(), axes, keep, doorways).room.free_space.size(),
             region.size());
 }
 

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "tacs_graphs/rooms/rooms_config.h"
+#include "tacs_graphs/rooms/tacs_free_space.h"
 #include "tacs_graphs/scene_graph/scene_graph.h"
 #include "tacs_graphs/walls/dominant_axes.h"
 #include "tacs_graphs/walls/wall_map.h"
@@ -69,10 +70,13 @@ struct RoomExtractionResult {
 };
 
 /// Extracts the room bounded by `landmarks` around `free_space` (map frame). The observation's
-/// free_space is the input; keyframe_ids are left empty for the caller.
+/// free_space is the input, less what lies behind the room's walls (`outside_margin`); a wall
+/// runs on across the `doorways` (rooms/tacs_free_space.h) beside it. keyframe_ids are left
+/// empty for the caller.
 RoomExtractionResult extractRoom(const std::vector<Eigen::Vector3d>& free_space,
                                  const std::map<uint32_t, WallLandmark>& landmarks,
-                                 const DominantAxes& axes, const RoomExtractionConfig& config);
+                                 const DominantAxes& axes, const RoomExtractionConfig& config,
+                                 const std::vector<Doorway>& doorways = {});
 
 /// Recomputes the centre of a room from its walls' current planes and its free space (after the
 /// backend moved the walls, or after free space was merged in). Walls missing from `landmarks`

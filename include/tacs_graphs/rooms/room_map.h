@@ -117,7 +117,7 @@ class RoomMap {
   /// Whether two views sharing `overlap` of the smaller's cells are one space: nested, or
   /// sharing open_overlap with no room-bounding plane between their centres.
   bool sameOpenSpace(double overlap, const RoomObservation& a, const RoomObservation& b,
-                     const std::map<uint32_t, WallLandmark>& landmarks) const;
+                     const std::map<uint32_t, WallLandmark>& bounding) const;
   RoomAssociation mergeOrCreate(MappedRoom* match, const RoomObservation& observation,
                                 bool union_free_space,
                                 const std::map<uint32_t, WallLandmark>& landmarks);

@@ -272,13 +272,14 @@ GicpResult LidarOdometry::registerScan(const GicpCloud::ConstPtr& scan, const Po
   // fit is judged against the recent scans' too, not only against the absolute floor.
   const double min_fit =
       std::max(config_.recovery_min_fit, config_.recovery_relative_fit * recent_fit_);
-  if (result->fit < min_fit || !withinLimits(guess, reg.T_target_source)) {
+  const bool plausible = withinLimits(guess, reg.T_target_source);
+  if (result->fit < min_fit || !plausible) {
     GicpResult recovered = recoverFromHypotheses(cloud, scan, guess);
     const double fit = fitOf(scan, recovered.T_target_source);
     // A plausible registration (within the motion limits) that merely fits a little less than
     // usual is kept unless a hypothesis fits clearly better: in repetitive stacks and aisles the
     // view turned by 180 deg fits about as well, and a tie must not flip the map.
-    const double gain = withinLimits(guess, reg.T_target_source) ? config_.recovery_min_gain : 0.0;
+    const double gain = plausible ? config_.recovery_min_gain : 0.0;
     if (fit > result->fit + gain) {
       reg = recovered;
       result->fit = fit;

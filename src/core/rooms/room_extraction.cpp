@@ -98,30 +98,26 @@ Pair bestPair(const std::vector<Candidate>& low, const std::vector<Candidate>& h
   return best;
 }
 
-constexpr double kDoorGap = 2.0;        // collinear wall pieces this close frame one door [m]
-constexpr double kCollinearDist = 0.2;  // largest offset between pieces of one wall line [m]
-
-// Extent [lo, hi] along wall w's axis (from its first endpoint) of its wall line: w with the
-// collinear pieces of the same face reached over gaps up to a door wide, since a door splits a
-// wall into pieces and the room keeps only one of them.
-std::pair<double, double> wallLineExtent(const WallLandmark& w,
-                                         const std::map<uint32_t, WallLandmark>& landmarks) {
-  const Eigen::Vector2d axis = wallAxis(w.normal), n = w.normal.head<2>();
+// Extent [lo, hi] along wall w's axis (from its first endpoint) of its wall line: w and the
+// pieces of the same face it continues into across doorways, since a door splits a wall into
+// pieces and the room keeps only one of them.
+std::pair<double, double> wallLineExtent(uint32_t id, const WallLandmark& w,
+                                         const std::map<uint32_t, WallLandmark>& landmarks,
+                                         const std::vector<Doorway>& doorways) {
+  const Eigen::Vector2d axis = wallAxis(w.normal);
   double lo = 0.0, hi = w.length();
-  for (bool grown = true; grown;) {
-    grown = false;
-    for (const auto& [id, o] : landmarks) {
-      if (o.normal.dot(w.normal) < std::cos(10.0 * M_PI / 180.0)) continue;
-      if (std::abs(n.dot(o.endpoints[0]) + w.d) > kCollinearDist ||
-          std::abs(n.dot(o.endpoints[1]) + w.d) > kCollinearDist)
-        continue;
-      const double t0 = (o.endpoints[0] - w.endpoints[0]).dot(axis);
-      const double t1 = (o.endpoints[1] - w.endpoints[0]).dot(axis);
-      const double a = std::min(t0, t1), b = std::max(t0, t1);
-      if (b < lo - kDoorGap || a > hi + kDoorGap || (a >= lo && b <= hi)) continue;
-      lo = std::min(lo, a);
-      hi = std::max(hi, b);
-      grown = true;
+  std::vector<uint32_t> line = {id};
+  for (size_t k = 0; k < line.size(); ++k) {
+    for (const Doorway& d : doorways) {
+      const uint32_t other = d.wall_a == line[k] ? d.wall_b : d.wall_b == line[k] ? d.wall_a : id;
+      if (std::find(line.begin(), line.end(), other) != line.end()) continue;
+      const auto it = landmarks.find(other);
+      if (it == landmarks.end()) continue;
+      line.push_back(other);
+      for (const auto& e : it->second.endpoints) {
+        const double t = (e - w.endpoints[0]).dot(axis);
+        lo = std::min(lo, t), hi = std::max(hi, t);
+      }
     }
   }
   return {lo, hi};
@@ -135,6 +131,7 @@ std::pair<double, double> wallLineExtent(const WallLandmark& w,
 std::vector<Eigen::Vector3d> insideOwnWalls(const std::vector<Eigen::Vector3d>& free_space,
                                             const RoomObservation& room,
                                             const std::map<uint32_t, WallLandmark>& landmarks,
+                                            const std::vector<Doorway>& doorways,
                                             const RoomExtractionConfig& c) {
   struct Line {
     const WallLandmark* wall;
@@ -148,7 +145,7 @@ std::vector<Eigen::Vector3d> insideOwnWalls(const std::vector<Eigen::Vector3d>& 
       const double inf = std::numeric_limits<double>::infinity();
       lines.push_back({&it->second, -inf, inf});
     } else {
-      const auto [lo, hi] = wallLineExtent(it->second, landmarks);
+      const auto [lo, hi] = wallLineExtent(it->first, it->second, landmarks, doorways);
       lines.push_back({&it->second, lo, hi});
     }
   }
@@ -198,7 +195,8 @@ Eigen::Vector2d RoomObservation::freeSpaceCentroid() const {
 
 RoomExtractionResult extractRoom(const std::vector<Eigen::Vector3d>& free_space,
                                  const std::map<uint32_t, WallLandmark>& landmarks,
-                                 const DominantAxes& axes, const RoomExtractionConfig& config) {
+                                 const DominantAxes& axes, const RoomExtractionConfig& config,
+                                 const std::vector<Doorway>& doorways) {
   RoomExtractionResult result;
   if (static_cast<int>(free_space.size()) < config.min_free_space_points) {
     result.reason = "free space too small";
@@ -244,7 +242,7 @@ RoomExtractionResult extractRoom(const std::vector<Eigen::Vector3d>& free_space,
     result.adjacent_points[kYMinus] = candidates[kYMinus][py.high].points;
   }
   if (config.outside_margin >= 0.0) {
-    auto inside = insideOwnWalls(free_space, room, landmarks, config);
+    auto inside = insideOwnWalls(free_space, room, landmarks, doorways, config);
     if (!inside.empty()) room.free_space = std::move(inside);
   }
   // Start from the free-space centre so a corridor's along-wall coordinate is defined.

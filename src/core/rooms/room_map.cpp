@@ -318,12 +318,12 @@ std::optional<RoomAssociation> RoomMap::addUnbounded(
 }
 
 bool RoomMap::sameOpenSpace(double overlap, const RoomObservation& a, const RoomObservation& b,
-                            const std::map<uint32_t, WallLandmark>& landmarks) const {
+                            const std::map<uint32_t, WallLandmark>& bounding) const {
   if (overlap >= config_.nested_overlap) return true;
   // Views of an L- or T-shaped open-plan floor from different legs pick different walls and
   // centres yet share much of their free space with no wall between them.
   return overlap >= config_.open_overlap &&
-         !wallBetween(a.center.head<2>(), b.center.head<2>(), landmarks);
+         !wallBetween(a.center.head<2>(), b.center.head<2>(), bounding);
 }
 
 bool RoomMap::spansSeparateRooms(const RoomObservation& observation,

@@ -42,7 +42,10 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
       anchored_only ? roomBoundingPlanes(walls, config_.extraction)
                     : std::map<uint32_t, WallLandmark>{};
   const std::map<uint32_t, WallLandmark>& bounding = anchored_only ? anchored : walls.landmarks();
-  RoomExtractionResult extracted = extractRoom(points, bounding, axes, config_.extraction);
+  // Doorways let a room's wall run on past its door, so what leaked through the door stays out.
+  const std::vector<Doorway> doorways = findDoorways(walls.landmarks(), config_.tacs);
+  RoomExtractionResult extracted =
+      extractRoom(points, bounding, axes, config_.extraction, doorways);
   // A TACS region that ran through a doorway unnoticed holds two mapped rooms a wall separates;
   // merging would fold them into one.
   const auto spans_rooms = [&](const RoomExtractionResult& r) {
@@ -63,7 +66,8 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
       if (close) near.push_back(p);
     }
     if (near.size() < points.size()) {
-      RoomExtractionResult retried = extractRoom(near, bounding, axes, config_.extraction);
+      RoomExtractionResult retried =
+          extractRoom(near, bounding, axes, config_.extraction, doorways);
       if (retried.found && !spans_rooms(retried)) {
         extracted = std::move(retried);
         spans = false;
