@@ -202,6 +202,36 @@ TEST(RoomMapAddUnbounded, ARegionAlongAWallOfTheRoomJoinsItThoughItsPairsEnclose
   EXPECT_EQ(rooms.rooms().at(created.room_id).room.walls, west.walls);
 }
 
+TEST(RoomMapAddUnbounded, TheAisleInFrontOfAnOfficeDoorIsNotTheOffice) {
+  // An office (x 8..12, y 15..20) seen as a corridor: a desk hid its back wall, so only its side
+  // walls pair. Its front wall has a 1 m door (x 9.5..10.5). The aisle in front of the door lies
+  // between the side walls, but the office reaches it only through the door.
+  const Eigen::Vector2d px(1, 0), py(0, 1);
+  std::map<uint32_t, WallLandmark> lm;
+  lm[0] = face(0, {8, 15}, {8, 20}, px);
+  lm[1] = face(1, {12, 15}, {12, 20}, -px);
+  lm[2] = face(2, {8, 15}, {9.5, 15}, py);
+  lm[3] = face(3, {10.5, 15}, {12, 15}, py);
+  RoomObservation office;
+  office.kind = RoomKind::kCorridor;
+  office.walls = {0, 1, -1, -1};
+  office.free_space = grid(8.2, 11.8, 15.2, 19.8);
+  office.keyframe_ids = {1};
+  RoomMap rooms;
+  const RoomAssociation created = rooms.addObservation(office, lm);
+  ASSERT_TRUE(created.created);
+  RoomObservation aisle;
+  aisle.free_space = grid(8.4, 11.6, 13.0, 14.8);
+  aisle.keyframe_ids = {2};
+  const std::vector<Doorway> doorways = findDoorways(lm, TacsFreeSpaceConfig{});
+  ASSERT_EQ(doorways.size(), 1u);
+  EXPECT_FALSE(rooms.addUnbounded(aisle, lm, lm, doorways).has_value());
+  // The trap: with the door unknown, the side walls enclose the aisle and it joins the office.
+  const auto joined = rooms.addUnbounded(aisle, lm, lm, {});
+  ASSERT_TRUE(joined.has_value());
+  EXPECT_EQ(joined->room_id, created.room_id);
+}
+
 TEST(WallMapMirror, IsWallFollowsTheSceneGraphsFlag) {
   SceneGraph graph;
   WallNode wall;

@@ -80,10 +80,13 @@ class RoomMap {
   /// little) with none of the `bounding` planes (walls and anchored planes, rooms/room_bounds.h)
   /// between the two free spaces' centroids (a room behind the hall's long wall shares it too): its
   /// free space and keyframes become the room's, the room keeps its walls. A region with walls of
-  /// its own joins four-wall rooms only. Nothing when no room qualifies.
+  /// its own joins four-wall rooms only. Nothing when no room qualifies. Either way no `bounding`
+  /// plane and none of the `doorways` (between bounding planes) may stand between the region's
+  /// and the room's free-space centroids: what the room reaches only through its door is not it.
   std::optional<RoomAssociation> addUnbounded(const RoomObservation& region,
                                               const std::map<uint32_t, WallLandmark>& landmarks,
-                                              const std::map<uint32_t, WallLandmark>& bounding);
+                                              const std::map<uint32_t, WallLandmark>& bounding,
+                                              const std::vector<Doorway>& doorways = {});
 
   /// S-Graphs+ style association by 2D centre distance (the voxel baseline).
   RoomAssociation addByCenterDistance(const RoomObservation& observation,

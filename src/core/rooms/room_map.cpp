@@ -64,21 +64,33 @@ void unionIds(std::vector<uint32_t>* into, const std::vector<uint32_t>& add) {
   into->erase(std::unique(into->begin(), into->end()), into->end());
 }
 
-// True when the segment a-b crosses a mapped wall (a wall stands between two views).
-bool wallBetween(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                 const std::map<uint32_t, WallLandmark>& landmarks) {
+// True when the segments a-b and p-(p+s) cross (a-b's own ends excluded).
+bool segmentCrosses(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p,
+                    const Eigen::Vector2d& s) {
   const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
     return u.x() * v.y() - u.y() * v.x();
   };
   const Eigen::Vector2d r = b - a;
-  for (const auto& [id, w] : landmarks) {
-    const Eigen::Vector2d p = w.endpoints[0], s = w.endpoints[1] - w.endpoints[0];
-    const double denom = cross(r, s);
-    if (std::abs(denom) < 1e-9) continue;  // parallel: a bounding wall, not a separating one
-    const double t = cross(p - a, s) / denom, u = cross(p - a, r) / denom;
-    if (t > 0.0 && t < 1.0 && u >= 0.0 && u <= 1.0) return true;
-  }
-  return false;
+  const double denom = cross(r, s);
+  if (std::abs(denom) < 1e-9) return false;  // parallel: a bounding wall, not a separating one
+  const double t = cross(p - a, s) / denom, u = cross(p - a, r) / denom;
+  return t > 0.0 && t < 1.0 && u >= 0.0 && u <= 1.0;
+}
+
+// True when the segment a-b crosses a mapped wall (a wall stands between two views).
+bool wallBetween(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                 const std::map<uint32_t, WallLandmark>& landmarks) {
+  return std::any_of(landmarks.begin(), landmarks.end(), [&](const auto& entry) {
+    const WallLandmark& w = entry.second;
+    return segmentCrosses(a, b, w.endpoints[0], w.endpoints[1] - w.endpoints[0]);
+  });
+}
+
+// True when the segment a-b passes through one of the doorways.
+bool doorBetween(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                 const std::vector<Doorway>& doorways) {
+  return std::any_of(doorways.begin(), doorways.end(),
+                     [&](const Doorway& d) { return segmentCrosses(a, b, d.a, d.b - d.a); });
 }
 
 // Share of the smaller of two non-empty cell sets that lies in the other one.
@@ -258,7 +270,7 @@ RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
 
 std::optional<RoomAssociation> RoomMap::addUnbounded(
     const RoomObservation& region, const std::map<uint32_t, WallLandmark>& landmarks,
-    const std::map<uint32_t, WallLandmark>& bounding) {
+    const std::map<uint32_t, WallLandmark>& bounding, const std::vector<Doorway>& doorways) {
   remember(landmarks);
   // The region's cells with their 8 neighbours: a cell of a room among them is a contact.
   std::vector<std::array<int64_t, 9>> neighbourhoods;
@@ -286,13 +298,18 @@ std::optional<RoomAssociation> RoomMap::addUnbounded(
     // A region with walls of its own (a hall's wide part, RoomSegmenter) joins four-wall rooms
     // only: a corridor's one pair flanks whatever lies between its walls, rooms behind them too.
     if (!region_walls.empty() && m.room.kind != RoomKind::kRoom) continue;
+    // Either way, a region the room reaches only through a wall or a door is another space: the
+    // aisle in front of an office whose desk hid its back wall lies between the office's side
+    // walls, beyond its door.
+    const Eigen::Vector2d room_centroid = m.room.freeSpaceCentroid();
+    if (wallBetween(region_centroid, room_centroid, bounding) ||
+        doorBetween(region_centroid, room_centroid, doorways)) {
+      continue;
+    }
     const bool shares_a_wall =
-        std::any_of(region_walls.begin(), region_walls.end(),
-                    [&](uint32_t w) {
-                      return std::count(m.room.walls.begin(), m.room.walls.end(),
-                                        static_cast<int>(w)) > 0;
-                    }) &&
-        !wallBetween(region_centroid, m.room.freeSpaceCentroid(), bounding);
+        std::any_of(region_walls.begin(), region_walls.end(), [&](uint32_t w) {
+          return std::count(m.room.walls.begin(), m.room.walls.end(), static_cast<int>(w)) > 0;
+        });
     if (!shares_a_wall &&
         shareWithinWalls(m.room, region.free_space, landmarks) < kMinEnclosedShare) {
       continue;

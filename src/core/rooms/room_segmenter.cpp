@@ -126,7 +126,8 @@ bool RoomSegmenter::joinedAHall(const RoomExtractionResult& extracted,
   if (!closed.found || closed.room.kind != RoomKind::kRoom) return false;
   RoomObservation region = extracted.room;
   region.keyframe_ids = keyframe_ids;
-  auto joined = room_map_.addUnbounded(region, walls.landmarks(), bounding);
+  auto joined = room_map_.addUnbounded(region, walls.landmarks(), bounding,
+                                       findDoorways(bounding, config_.tacs));
   if (!joined) return false;
   result->observations.push_back(std::move(region));
   result->associations.push_back(std::move(*joined));
@@ -136,8 +137,10 @@ bool RoomSegmenter::joinedAHall(const RoomExtractionResult& extracted,
 void RoomSegmenter::joinUnboundedRegions(const WallMap& walls,
                                          const std::map<uint32_t, WallLandmark>& bounding,
                                          RoomSegmentationResult* result) {
+  // Doors in the room-bounding walls (not gaps between free-standing furniture).
+  const std::vector<Doorway> doorways = findDoorways(bounding, config_.tacs);
   for (auto it = unbounded_.begin(); it != unbounded_.end();) {
-    if (auto joined = room_map_.addUnbounded(*it, walls.landmarks(), bounding)) {
+    if (auto joined = room_map_.addUnbounded(*it, walls.landmarks(), bounding, doorways)) {
       result->observations.push_back(std::move(*it));
       result->associations.push_back(std::move(*joined));
       it = unbounded_.erase(it);
