@@ -8,6 +8,9 @@
 #
 #   bash scripts/prior_results.sh [OUT_FILE]
 #   TACS_WORLDS="warehouse open_office" bash scripts/prior_results.sh OUT_FILE  # those worlds only
+#   TACS_CROSS_ONLY=1 TACS_WORLDS="lab_room smoke" TACS_PRIORS="warehouse" \
+#     bash scripts/prior_results.sh OUT_FILE  # only the other-building table: each session of
+#                                            # TACS_WORLDS against each prior of TACS_PRIORS
 #
 # About 3 hours on 2 cores for the 13 worlds (195 runs, two at a time); N worlds take N^2 + N
 # runs. Needs a built workspace.
@@ -30,6 +33,14 @@ if [ -n "${TACS_WORLDS:-}" ]; then
 else
   for world in "$REPO"/worlds/*.json; do WORLDS+=("$(basename "$world" .json)"); done
 fi
+PRIORS=("${WORLDS[@]}")
+[ -n "${TACS_PRIORS:-}" ] && read -r -a PRIORS <<<"$TACS_PRIORS"
+for w in "${PRIORS[@]}"; do
+  [ -f "$REPO/worlds/$w.json" ] || { echo "no world $REPO/worlds/$w.json" >&2; exit 2; }
+done
+CROSS_ONLY="${TACS_CROSS_ONLY:-0}"
+# Session 1 of every world that is a session or a prior.
+read -r -a ALL <<<"$(printf '%s\n' "${WORLDS[@]}" "${PRIORS[@]}" | sort -u | tr '\n' ' ')"
 
 middle() {  # world -> its middle waypoint
   /usr/bin/python3 -c "import json,sys; print(len(json.load(open(sys.argv[1]))['trajectory']['waypoints'])//2)" \
@@ -45,20 +56,20 @@ export -f middle second
 export REPO OFFLINE
 
 echo "session 1 of every world" >&2
-printf '%s\n' "${WORLDS[@]}" | xargs -P 2 -I{} \
+printf '%s\n' "${ALL[@]}" | xargs -P 2 -I{} \
   sh -c '"$OFFLINE" --world "$REPO/worlds/{}.json" --seed 1 --out "$0/{}.s1" --quiet >"$0/{}.s1.log" 2>&1' "$WORK"
-for w in "${WORLDS[@]}"; do sha256sum "$WORK/$w.s1"/* >"$WORK/$w.s1.sha"; done
+for w in "${ALL[@]}"; do sha256sum "$WORK/$w.s1"/* >"$WORK/$w.s1.sha"; done
 
 echo "session 2 against its own prior, merged and localize-only" >&2
-for w in "${WORLDS[@]}"; do
+[ "$CROSS_ONLY" = 1 ] || for w in "${WORLDS[@]}"; do
   printf '%s merged\n%s local\n' "$w" "$w"
-done | xargs -P 2 -L 1 bash -c '
+done | xargs -P 2 -L 1 -r bash -c '
   if [ "$1" = merged ]; then second "$0" "'"$WORK"'/$0.s1" "'"$WORK"'/$0.s2";
   else second "$0" "'"$WORK"'/$0.s1" "'"$WORK"'/$0.local" --localize-only; fi'
 
 echo "session 2 against every other world's prior" >&2
 for a in "${WORLDS[@]}"; do
-  for b in "${WORLDS[@]}"; do
+  for b in "${PRIORS[@]}"; do
     [ "$a" = "$b" ] || echo "$a $b"
   done
 done | xargs -P 2 -L 1 bash -c 'second "$0" "'"$WORK"'/$1.s1" "'"$WORK"'/cross.$0.$1"'
@@ -75,9 +86,10 @@ done | xargs -P 2 -L 1 bash -c 'second "$0" "'"$WORK"'/$1.s1" "'"$WORK"'/cross.$
   echo "session 2 paired with session 1's room. Merged: room F1 of the saved (merged) graph against"
   echo "the ground truth, and its walls against the prior's."
   echo
-  echo "| world | status | distance [m] | ATE [m] | ATE max [m] | rooms with prior id | room F1 s1 / s2 / merged | walls prior / merged | localize-only: graph = prior's | prior unchanged |"
-  echo "|---|---|---|---|---|---|---|---|---|---|"
-  for w in "${WORLDS[@]}"; do
+  [ "$CROSS_ONLY" = 1 ] && echo "Only the other-building table (\`TACS_CROSS_ONLY=1\`)." && echo
+  [ "$CROSS_ONLY" = 1 ] || echo "| world | status | distance [m] | ATE [m] | ATE max [m] | rooms with prior id | room F1 s1 / s2 / merged | walls prior / merged | localize-only: graph = prior's | prior unchanged |"
+  [ "$CROSS_ONLY" = 1 ] || echo "|---|---|---|---|---|---|---|---|---|---|"
+  [ "$CROSS_ONLY" = 1 ] || for w in "${WORLDS[@]}"; do
     j="$("$EVAL" --prior "$WORK/$w.s1" --session "$WORK/$w.s2" --json)"
     same="no"; cmp -s "$WORK/$w.s1/scene_graph.json" "$WORK/$w.local/scene_graph.json" && same="yes"
     kept="no"; sha256sum --quiet -c "$WORK/$w.s1.sha" >/dev/null 2>&1 && kept="yes"
@@ -99,13 +111,15 @@ PY
   echo "Session 2 of each world (rows) against session 1 of every other world (columns):"
   echo "\`-\` not localized (right), \`FALSE\` a relocalization in a building it is not in."
   echo
-  printf '| session \\ prior |'; for b in "${WORLDS[@]}"; do printf ' %s |' "$b"; done; echo
-  printf '|---|'; for b in "${WORLDS[@]}"; do printf -- '---|'; done; echo
+  printf '| session \\ prior |'; for b in "${PRIORS[@]}"; do printf ' %s |' "$b"; done; echo
+  printf '|---|'; for b in "${PRIORS[@]}"; do printf -- '---|'; done; echo
   false_total=0
+  pairs=0
   for a in "${WORLDS[@]}"; do
     printf '| %s |' "$a"
-    for b in "${WORLDS[@]}"; do
+    for b in "${PRIORS[@]}"; do
       if [ "$a" = "$b" ]; then printf ' |'; continue; fi
+      pairs=$((pairs + 1))
       status="$(/usr/bin/python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["status"])' \
         "$WORK/cross.$a.$b/localization.json" 2>/dev/null || echo failed)"
       case "$status" in
@@ -117,6 +131,6 @@ PY
     echo
   done
   echo
-  echo "False relocalizations: $false_total of $(( ${#WORLDS[@]} * (${#WORLDS[@]} - 1) ))."
+  echo "False relocalizations: $false_total of $pairs."
 } >"$OUT"
 echo "wrote $OUT" >&2
