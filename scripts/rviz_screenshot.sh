@@ -66,5 +66,7 @@ import -window root "$OUT"
 cp "$WORK/launch.log" "${OUT%.png}.launch.log"
 echo "screenshot: $OUT (the launch's log: ${OUT%.png}.launch.log)"
 if [ "${TACS_PRIOR:-0}" = 1 ]; then
-  grep -m1 "Localized in the prior map" "$WORK/launch.log" || echo "not localized in the prior map"
+  # The backend logs to ROS_HOME, not to the launch's output.
+  grep -rh -m1 "Localized in the prior map" "$WORK/launch.log" "$ROS_HOME/log" 2>/dev/null ||
+    echo "not localized in the prior map"
 fi
