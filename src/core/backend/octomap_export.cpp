@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <unordered_map>
@@ -128,6 +129,45 @@ class VisitedLeaves {
   int epoch_ = 0;
 };
 
+// Calls visit(key) for every leaf OctoMap's computeRayKeys(origin, end) lists (the 3D DDA of
+// Amanatides & Woo: the origin's leaf, the leaves crossed, not the end's), in the same order and
+// with the same arithmetic, but without collecting them first. False when an end is off the map.
+template <class Visit>
+bool walkRay(const octomap::OcTree& tree, const octomap::point3d& origin,
+             const octomap::point3d& end, Visit&& visit) {
+  octomap::OcTreeKey key, key_end;
+  if (!tree.coordToKeyChecked(origin, key) || !tree.coordToKeyChecked(end, key_end)) return false;
+  if (key == key_end) return true;
+  visit(key);
+  octomap::point3d direction = end - origin;
+  const float length = static_cast<float>(direction.norm());
+  direction /= length;
+  const double resolution = tree.getResolution();
+  int step[3];
+  double t_max[3], t_delta[3];
+  for (int i = 0; i < 3; ++i) {
+    step[i] = direction(i) > 0.0 ? 1 : direction(i) < 0.0 ? -1 : 0;
+    if (step[i] != 0) {
+      double border = tree.keyToCoord(key[i]);
+      border += static_cast<float>(step[i] * resolution * 0.5);
+      t_max[i] = (border - origin(i)) / direction(i);
+      t_delta[i] = resolution / std::fabs(direction(i));
+    } else {
+      t_max[i] = t_delta[i] = std::numeric_limits<double>::max();
+    }
+  }
+  while (true) {
+    const int dim =
+        t_max[0] < t_max[1] ? (t_max[0] < t_max[2] ? 0 : 2) : (t_max[1] < t_max[2] ? 1 : 2);
+    key[dim] = static_cast<octomap::key_type>(key[dim] + step[dim]);
+    t_max[dim] += t_delta[dim];
+    if (key == key_end) return true;
+    // Rounding can step past the end's leaf: stop once the ray is longer than the segment.
+    if (std::min(std::min(t_max[0], t_max[1]), t_max[2]) > length) return true;
+    visit(key);
+  }
+}
+
 // One keyframe's share of map.bt: the leaves its points hit and the other leaves its rays cross,
 // each once; split by the part of the map a leaf belongs to (its brick's x, modulo kParts), so
 // the parts are updated side by side.
@@ -172,16 +212,14 @@ KeyframeRays castRays(const octomap::OcTree& tree, const PointCloud& cloud, cons
     rays.hits[partOf(key)].push_back(key);
     if (keepRay(c)) ends.push_back(key);
   }
-  octomap::KeyRay ray;
   for (const octomap::OcTreeKey& end : ends) {
     octomap::point3d e = tree.keyToCoord(end);
     if ((e - origin).norm() > max_range) {  // free up to the range, as OctoMap computes it
       e = origin + (e - origin).normalized() * static_cast<float>(max_range);
     }
-    if (!tree.computeRayKeys(origin, e, ray)) continue;
-    for (const octomap::OcTreeKey& cell : ray) {
+    walkRay(tree, origin, e, [&](const octomap::OcTreeKey& cell) {
       if (visited->visit(cell)) rays.crossed[partOf(cell)].push_back(cell);
-    }
+    });
   }
   return rays;
 }
@@ -212,36 +250,42 @@ octomap::OcTreeNode* descend(octomap::OcTree* tree, octomap::OcTreeNode* node,
   return node;
 }
 
-// Sets every touched leaf in `tree` (empty), one descent per brick: a brick whose 512 leaves are
-// all touched with the same log-odds becomes one node at its depth, the form OctoMap's pruning
-// gives it (free space seen often is clamped alike). Setting the 8 million leaves of the real
-// hall one by one took longer than casting their rays.
+// Sets every touched leaf in `tree` (empty) to its maximum-likelihood value (the clamping bound
+// on its side of the occupancy threshold, what OctoMap's writeBinary stores), one descent per
+// brick: a brick whose 512 leaves are all touched alike becomes one node at its depth, the form
+// OctoMap's pruning gives it. Setting the 8 million leaves of the real hall one by one took longer
+// than casting their rays.
 void writeInto(const BrickDirectory<LeafBrick>& leaves, octomap::OcTree* tree) {
   const int depth = static_cast<int>(tree->getTreeDepth());
+  const float occupied = tree->getClampingThresMaxLog(), free = tree->getClampingThresMinLog();
+  const float threshold = tree->getOccupancyThresLog();
+  const auto likeliest = [&](const LeafUpdate& l) {
+    return l.log_odds >= threshold ? occupied : free;
+  };
   for (const auto& [brick, cells] : leaves.bricks()) {
     const octomap::OcTreeKey corner(static_cast<octomap::key_type>((brick >> 26) << 3),
                                     static_cast<octomap::key_type>(((brick >> 13) & 0x1fff) << 3),
                                     static_cast<octomap::key_type>((brick & 0x1fff) << 3));
-    const LeafUpdate& first = (*cells)[0];
+    const float first = likeliest((*cells)[0]);
     const bool uniform = std::all_of(cells->begin(), cells->end(), [&](const LeafUpdate& l) {
-      return l.touched && l.log_odds == first.log_odds;
+      return l.touched && likeliest(l) == first;
     });
     if (!tree->getRoot()) {  // OctoMap creates its root on a first leaf: a touched one
       const auto touched =
           std::find_if(cells->begin(), cells->end(), [](const LeafUpdate& l) { return l.touched; });
       if (touched == cells->end()) continue;
       tree->setNodeValue(keyOf(corner, static_cast<int>(touched - cells->begin())),
-                         touched->log_odds, /*lazy_eval=*/true);
+                         likeliest(*touched), /*lazy_eval=*/true);
     }
     octomap::OcTreeNode* node = descend(tree, tree->getRoot(), corner, 0, depth - 3);
     if (uniform && !tree->nodeHasChildren(node)) {
-      node->setLogOdds(first.log_odds);
+      node->setLogOdds(first);
       continue;
     }
     for (int i = 0; i < 512; ++i) {
       const LeafUpdate& leaf = (*cells)[i];
       if (leaf.touched)
-        descend(tree, node, keyOf(corner, i), depth - 3, depth)->setLogOdds(leaf.log_odds);
+        descend(tree, node, keyOf(corner, i), depth - 3, depth)->setLogOdds(likeliest(leaf));
     }
   }
 }
@@ -252,7 +296,9 @@ void writeInto(const BrickDirectory<LeafBrick>& leaves, octomap::OcTree* tree) {
 // leaf at most once, occupied before free), but the log-odds are accumulated in bricks and set
 // in the tree once, without OctoMap's tree search at every cell of every ray (48 s -> 6 s for
 // the 66 keyframes of the real hall); each keyframe's rays reach the bricks once per leaf, and
-// both the casting and the updates run on all cores.
+// both the casting and the updates run on all cores. Walking the rays without collecting their
+// leaves (walkRay) and setting the leaves at their maximum-likelihood values (writeInto) took the
+// real hall's map.bt from 3.6 to 2.8-3.1 s, every leaf's occupancy unchanged.
 void writeOctomap(const std::string& path, const SceneGraph& graph, const KeyframeClouds& clouds,
                   const MapExportConfig& config) {
   octomap::OcTree tree(config.octomap_resolution_m);
@@ -303,8 +349,11 @@ void writeOctomap(const std::string& path, const SceneGraph& graph, const Keyfra
     }
   }
   for (const auto& part : leaves) writeInto(part, &tree);
+  // The leaves hold their maximum-likelihood values already: what writeBinary would first make
+  // of them (toMaxLikelihood) is done; only the pruning is left.
+  tree.prune();
   const std::string tmp = path + ".tmp";
-  if (!tree.writeBinary(tmp)) throw std::runtime_error(path + ": cannot write OctoMap");
+  if (!tree.writeBinaryConst(tmp)) throw std::runtime_error(path + ": cannot write OctoMap");
   std::filesystem::rename(tmp, path);
 }
 
