@@ -90,12 +90,14 @@ class RoomSegmenter {
   bool joinedAHall(const RoomExtractionResult& extracted,
                    const std::vector<Eigen::Vector3d>& points,
                    const std::vector<uint32_t>& keyframe_ids, const WallMap& walls,
-                   const std::map<uint32_t, WallLandmark>& bounding, const DominantAxes& axes,
+                   const std::map<uint32_t, WallLandmark>& bounding,
+                   const std::vector<Doorway>& bounding_doorways, const DominantAxes& axes,
                    RoomSegmentationResult* result);
   /// Joins the kept regions that only free-standing furniture bounds to the rooms they open into
   /// (RoomMap::addUnbounded), once such a room is mapped.
   /// `bounding`: the planes that may bound rooms (rooms/room_bounds.h).
   void joinUnboundedRegions(const WallMap& walls, const std::map<uint32_t, WallLandmark>& bounding,
+                            const std::vector<Doorway>& bounding_doorways,
                             RoomSegmentationResult* result);
 
   RoomsConfig config_;

@@ -44,6 +44,9 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
   const std::map<uint32_t, WallLandmark>& bounding = anchored_only ? anchored : walls.landmarks();
   // Doorways let a room's wall run on past its door, so what leaked through the door stays out.
   const std::vector<Doorway> doorways = findDoorways(walls.landmarks(), config_.tacs);
+  // Doors in the room-bounding walls only (not gaps between free-standing furniture): what an
+  // unbounded region may not reach its room through.
+  const std::vector<Doorway> bounding_doorways = findDoorways(bounding, config_.tacs);
   RoomExtractionResult extracted =
       extractRoom(points, bounding, axes, config_.extraction, doorways);
   // A TACS region that ran through a doorway unnoticed holds two mapped rooms a wall separates;
@@ -74,7 +77,8 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
       }
     }
   }
-  if (anchored_only && joinedAHall(extracted, points, keyframe_ids, walls, bounding, axes, result))
+  if (anchored_only && joinedAHall(extracted, points, keyframe_ids, walls, bounding,
+                                   bounding_doorways, axes, result))
     return;
   if (!extracted.found) {
     // A region only free-standing furniture bounds (an aisle between racks) is part of the room
@@ -87,7 +91,7 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
       // The room it opens into may be mapped later (its walls seen from elsewhere): kept until
       // then.
       unbounded_.push_back(std::move(region));
-      joinUnboundedRegions(walls, bounding, result);
+      joinUnboundedRegions(walls, bounding, bounding_doorways, result);
       return;
     }
     result->rejected.push_back(extracted.reason);
@@ -106,13 +110,14 @@ void RoomSegmenter::addRegion(std::vector<Eigen::Vector3d> points,
                          : room_map_.addObservation(extracted.room, walls.landmarks(), &bounding);
   result->observations.push_back(std::move(extracted.room));
   result->associations.push_back(a);
-  if (!unbounded_.empty()) joinUnboundedRegions(walls, bounding, result);
+  if (!unbounded_.empty()) joinUnboundedRegions(walls, bounding, bounding_doorways, result);
 }
 
 bool RoomSegmenter::joinedAHall(const RoomExtractionResult& extracted,
                                 const std::vector<Eigen::Vector3d>& points,
                                 const std::vector<uint32_t>& keyframe_ids, const WallMap& walls,
                                 const std::map<uint32_t, WallLandmark>& bounding,
+                                const std::vector<Doorway>& bounding_doorways,
                                 const DominantAxes& axes, RoomSegmentationResult* result) {
   // A corridor's walls are close. A hall's two long walls around a region that furniture rows
   // close on the other axis (beside a supermarket's gondolas) make it part of the hall when the
@@ -126,8 +131,7 @@ bool RoomSegmenter::joinedAHall(const RoomExtractionResult& extracted,
   if (!closed.found || closed.room.kind != RoomKind::kRoom) return false;
   RoomObservation region = extracted.room;
   region.keyframe_ids = keyframe_ids;
-  auto joined = room_map_.addUnbounded(region, walls.landmarks(), bounding,
-                                       findDoorways(bounding, config_.tacs));
+  auto joined = room_map_.addUnbounded(region, walls.landmarks(), bounding, bounding_doorways);
   if (!joined) return false;
   result->observations.push_back(std::move(region));
   result->associations.push_back(std::move(*joined));
@@ -136,9 +140,8 @@ bool RoomSegmenter::joinedAHall(const RoomExtractionResult& extracted,
 
 void RoomSegmenter::joinUnboundedRegions(const WallMap& walls,
                                          const std::map<uint32_t, WallLandmark>& bounding,
+                                         const std::vector<Doorway>& doorways,
                                          RoomSegmentationResult* result) {
-  // Doors in the room-bounding walls (not gaps between free-standing furniture).
-  const std::vector<Doorway> doorways = findDoorways(bounding, config_.tacs);
   for (auto it = unbounded_.begin(); it != unbounded_.end();) {
     if (auto joined = room_map_.addUnbounded(*it, walls.landmarks(), bounding, doorways)) {
       result->observations.push_back(std::move(*it));
