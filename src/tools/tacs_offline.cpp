@@ -1,11 +1,10 @@
-// tacs_offline: runs the whole pipeline synchronously on a bag (rosbag C++ API, no ROS master) or
-// on a simulated world streamed in-process, and writes the run folder of docs/DESIGN.md.
-#include <pcl/common/transforms.h>
-
+// tacs_offline: runs the whole pipeline on a bag (rosbag C++ API, no ROS master) or on a simulated
+// world streamed in-process, as fast as the CPU allows, and writes the run folder of
+// docs/DESIGN.md. The odometry runs a few scans ahead of the keyframe stages, on a thread of its
+// own (offline_sources.h); the results are those of running each scan through in turn.
 #include <atomic>
 #include <csignal>
 #include <filesystem>
-#include <future>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -13,6 +12,7 @@
 #include <set>
 #include <string>
 
+#include "offline_sources.h"
 #include "tacs_graphs/common/message_reason.h"
 #include "tacs_graphs/common/timing.h"
 #include "tacs_graphs/common/trajectory_io.h"
@@ -20,9 +20,6 @@
 #include "tacs_graphs/pipeline/run_folder.h"
 #include "tacs_graphs/pipeline/staged_run_folder.h"
 #include "tacs_graphs/relocalization/prior_session.h"
-#include "tacs_graphs/ros/bag_scan_source.h"
-#include "tacs_graphs/sim/ground_truth.h"
-#include "tacs_graphs/sim/scan_stream.h"
 #include "tool_main.h"
 
 namespace {
@@ -117,115 +114,6 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-/// One scan in the sensor frame, from a bag or the simulator.
-struct SensorScan {
-  double stamp = 0.0;
-  std::string frame_id;
-  tacs::PointCloud cloud;
-  std::string error;       // the message could not be used
-  tacs::PointTimes times;  // per-point times relative to `stamp` (times.ok: usable)
-};
-
-class ScanSource {
- public:
-  virtual ~ScanSource() = default;
-  virtual bool next(SensorScan* scan) = 0;
-  virtual size_t size() const = 0;
-  /// T_base_sensor for the frame of the first scan.
-  virtual tacs::Pose3 baseToSensor(const std::string& frame_id) = 0;
-  /// Ground-truth trajectory of the base, empty when the source has none.
-  virtual tacs::Trajectory groundTruth() const = 0;
-  virtual void writeGroundTruth(const std::string& dir) = 0;
-};
-
-class BagSource : public ScanSource {
- public:
-  BagSource(const Options& o, const tacs::FramesConfig& frames,
-            const tacs::PointTimeConfig& point_times)
-      : bag_(o.bag, o.topic, point_times), frames_(frames) {}
-  bool next(SensorScan* scan) override {
-    tacs::BagScanSource::Scan s;
-    if (!bag_.next(&s)) return false;
-    scan->stamp = s.stamp;
-    scan->frame_id = s.frame_id;
-    scan->cloud = std::move(s.cloud);
-    scan->error = s.conversion.ok ? "" : s.conversion.error;
-    scan->times = std::move(s.times);
-    return true;
-  }
-  size_t size() const override { return bag_.messageCount(); }
-  tacs::Pose3 baseToSensor(const std::string& frame_id) override {
-    const std::string sensor = frames_.sensor_frame.empty() ? frame_id : frames_.sensor_frame;
-    if (const auto T = bag_.lookupTransform(frames_.base_frame, sensor)) {
-      std::cerr << "[tacs_offline] extrinsic " << frames_.base_frame << " -> " << sensor
-                << " from the bag's TF\n";
-      return *T;
-    }
-    std::cerr << "[tacs_offline] no TF " << frames_.base_frame << " -> " << sensor
-              << " in the bag: using frames.base_to_sensor\n";
-    return frames_.baseToSensor();
-  }
-  // Bags written by tacs_sim carry their ground truth; it is kept beside the run.
-  tacs::Trajectory groundTruth() const override {
-    return bag_.readOdometryTopic("/ground_truth/odom");
-  }
-  void writeGroundTruth(const std::string& dir) override {
-    const tacs::Trajectory gt = groundTruth();
-    if (!gt.empty()) tacs::writeTum(dir + "/ground_truth_tum.txt", gt);
-  }
-
- private:
-  tacs::BagScanSource bag_;
-  tacs::FramesConfig frames_;
-};
-
-class WorldSource : public ScanSource {
- public:
-  WorldSource(const Options& o, const tacs::PointTimeConfig& point_times)
-      : world_(tacs::sim::loadWorld(o.world)), stream_(world_, o.sim), point_times_(point_times) {}
-  bool next(SensorScan* scan) override {
-    // The next sweep is cast while the pipeline handles this one (rendering is pure: the sweep
-    // is the same whichever thread casts it).
-    if (!ahead_.valid()) ahead_ = renderAhead();
-    std::optional<tacs::sim::SimScan> rendered = ahead_.get();
-    if (!rendered) return false;
-    ahead_ = renderAhead();
-    const tacs::sim::SimScan& s = *rendered;
-    scan->stamp = s.stamp;
-    scan->frame_id = "velodyne";
-    scan->cloud = tacs::sim::toPointCloud(s);
-    // The times go through the same detection as a bag's field, in the world's convention. A
-    // world without motion distortion renders each sweep from one pose: nothing to deskew.
-    const std::string field = stream_.sensor().time_field;
-    if (stream_.sensor().motion_distortion && point_times_.time_field != "none") {
-      scan->times =
-          tacs::resolvePointTimes(field, tacs::sim::rawPointTimes(s, field), s.stamp, point_times_);
-    }
-    return true;
-  }
-  size_t size() const override { return stream_.scanCount(); }
-  tacs::Pose3 baseToSensor(const std::string&) override { return stream_.baseToSensor(); }
-  tacs::Trajectory groundTruth() const override { return stream_.groundTruth(); }
-  void writeGroundTruth(const std::string& dir) override {
-    tacs::writeTum(dir + "/ground_truth_tum.txt", stream_.groundTruth());
-    tacs::sim::writeGroundTruth(dir + "/ground_truth.json", tacs::sim::groundTruthOf(world_));
-  }
-
- private:
-  std::future<std::optional<tacs::sim::SimScan>> renderAhead() {
-    return std::async(std::launch::async, [this]() -> std::optional<tacs::sim::SimScan> {
-      tacs::sim::SimScan s;
-      if (!stream_.next(&s)) return std::nullopt;
-      return s;
-    });
-  }
-
-  tacs::sim::World world_;
-  tacs::sim::ScanStream stream_;
-  tacs::PointTimeConfig point_times_;
-  std::future<std::optional<tacs::sim::SimScan>> ahead_;
-};
-
 /// ATE of the optimised keyframes and of the raw odometry when ground truth exists.
 void printAccuracy(const tacs::Pipeline& pipeline, const tacs::Trajectory& ground_truth) {
   if (ground_truth.size() < 3 || pipeline.stats().keyframes < 3) return;
@@ -314,52 +202,46 @@ int run(const Options& o) {
       o.reference.empty() ? tacs::Trajectory() : tacs::readTum(o.reference, true);
   const std::unique_ptr<tacs::PriorSession> prior = loadPrior(o, loaded.config.relocalization);
   double driven_m = 0.0;  // along the odometry, for localization.json
-  std::unique_ptr<ScanSource> source;
+  std::unique_ptr<tacs::tools::ScanSource> source;
   if (!o.bag.empty()) {
-    source =
-        std::make_unique<BagSource>(o, loaded.config.frames, loaded.config.odometry.point_times);
+    source = std::make_unique<tacs::tools::BagSource>(o.bag, o.topic, loaded.config.frames,
+                                                      loaded.config.odometry.point_times);
   } else {
-    source = std::make_unique<WorldSource>(o, loaded.config.odometry.point_times);
+    source = std::make_unique<tacs::tools::WorldSource>(o.world, o.sim,
+                                                        loaded.config.odometry.point_times);
   }
-  // Built at the first usable scan, when the sensor extrinsic is known.
+  // The odometry runs on a thread of its own, a few scans ahead of the keyframe stages here
+  // (Pipeline::odometryOf); the pipeline is built there at the first usable scan, when the
+  // sensor extrinsic is known, and read here only after that scan came through the queue.
   std::unique_ptr<tacs::Pipeline> pipeline_ptr;
-  Eigen::Affine3f base_to_sensor = Eigen::Affine3f::Identity();
+  tacs::tools::OdometryAhead ahead(*source, [&](const tacs::Pose3& T_base_sensor) {
+    pipeline_ptr = std::make_unique<tacs::Pipeline>(loaded.config, T_base_sensor);
+    if (!given_poses.empty()) {
+      pipeline_ptr->useGivenPoses(o.poses_frame == "sensor"
+                                      ? tacs::rebaseTrajectory(given_poses, T_base_sensor)
+                                      : given_poses);
+    }
+    return pipeline_ptr.get();
+  });
   std::set<std::string> reported;  // each kind of bad scan is reported once
   tacs::Stopwatch watch;
-  SensorScan scan;
-  size_t k = 0;
-  while (source->next(&scan)) {
-    ++k;
+  while (const std::optional<tacs::tools::ScanItem> item = ahead.next()) {
+    const size_t k = item->k;
     if (interrupted) {
       throw std::runtime_error("interrupted at scan " + std::to_string(k) + ": nothing written; " +
                                out.path() + " is as it was");
     }
-    if (!scan.error.empty()) {
-      if (reported.insert(tacs::messageReason(scan.error)).second) {
-        std::cerr << "\n[tacs_offline] scan " << k << " skipped: " << scan.error << "\n";
+    if (!item->error.empty()) {
+      if (reported.insert(tacs::messageReason(item->error)).second) {
+        std::cerr << "\n[tacs_offline] scan " << k << " skipped: " << item->error << "\n";
       }
       continue;
     }
-    if (!pipeline_ptr) {
-      const tacs::Pose3 T_base_sensor = source->baseToSensor(scan.frame_id);
-      base_to_sensor = T_base_sensor.cast<float>();
-      pipeline_ptr = std::make_unique<tacs::Pipeline>(loaded.config, T_base_sensor);
-      if (!given_poses.empty()) {
-        pipeline_ptr->useGivenPoses(o.poses_frame == "sensor"
-                                        ? tacs::rebaseTrajectory(given_poses, T_base_sensor)
-                                        : given_poses);
-      }
-    }
-    tacs::PointCloud in_base;
-    pcl::transformPointCloud(scan.cloud, in_base, base_to_sensor);
-    const tacs::PointTimes& times = scan.times;
-    if (!times.ok && !times.reason.empty() && times.reason != "disabled" &&
-        reported.insert("point times: " + times.reason).second) {
-      std::cerr << "\n[tacs_offline] scan " << k << ": no deskew: " << times.message
+    if (!item->no_deskew.empty() && reported.insert("point times: " + item->no_deskew).second) {
+      std::cerr << "\n[tacs_offline] scan " << k << ": no deskew: " << item->no_deskew_message
                 << "; the scan is used as measured (reported once)\n";
     }
-    const tacs::ScanOutcome outcome =
-        pipeline_ptr->processScan(scan.stamp, in_base, times.ok ? &times.offset_s : nullptr);
+    const tacs::ScanOutcome outcome = pipeline_ptr->takeOdometry(item->odometry);
     if (!outcome.accepted && reported.insert(tacs::messageReason(outcome.error)).second) {
       std::cerr << "\n[tacs_offline] scan " << k << " rejected: " << outcome.error << "\n";
     }
@@ -369,7 +251,7 @@ int run(const Options& o) {
           (odometry.back().pose.translation() - odometry.end()[-2].pose.translation()).norm();
     }
     if (prior && (outcome.rooms > 0 || (outcome.keyframe && prior->wantsMapAttempt(driven_m)))) {
-      prior->update(pipeline_ptr->sceneGraph(), pipeline_ptr->keyframeClouds(), scan.stamp,
+      prior->update(pipeline_ptr->sceneGraph(), pipeline_ptr->keyframeClouds(), item->stamp,
                     driven_m);
     }
     if (!o.quiet && (k % 20 == 0 || k == source->size())) {
@@ -380,6 +262,7 @@ int run(const Options& o) {
                 << 1e3 * k / watch.elapsedMs() << " scans/s" << std::flush;
     }
   }
+  ahead.finish();  // rethrows what stopped the odometry thread, if anything did
   if (!pipeline_ptr) pipeline_ptr = std::make_unique<tacs::Pipeline>(loaded.config);
   tacs::Pipeline& pipeline = *pipeline_ptr;
   const tacs::PipelineStats& counts = pipeline.stats();

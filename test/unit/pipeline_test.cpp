@@ -3,8 +3,10 @@
 
 #include <filesystem>
 #include <limits>
+#include <thread>
 
 #include "common/test_paths.h"
+#include "tacs_graphs/common/bounded_queue.h"
 #include "tacs_graphs/common/trajectory_io.h"
 #include "tacs_graphs/eval/trajectory_metrics.h"
 #include "tacs_graphs/pipeline/run_folder.h"
@@ -47,6 +49,40 @@ TEST(Pipeline, TracksTheSmokeWorldAndMapsItsWalls) {
   EXPECT_GE(walls, 4u);
   EXPECT_LE(walls, 22u);
   EXPECT_GT(run.pipeline.backend().optimizations(), 0);
+}
+
+TEST(Pipeline, OdometryRunningAheadOnAnotherThreadGivesTheSameRun) {
+  // tacs_offline's way: odometryOf on a thread of its own, takeOdometry in scan order here.
+  SmokeRun sequential(6.0);
+  Pipeline pipeline{PipelineConfig{}};
+  sim::SimOptions options;
+  options.duration_s = 6.0;
+  sim::ScanStream stream(sim::loadWorld(test::sourceDir() + "/worlds/smoke.json"), options);
+  const Eigen::Affine3f T_base_sensor = stream.baseToSensor().cast<float>();
+  BoundedQueue<ScanOdometry> queue(4);
+  std::thread odometry_thread([&] {
+    sim::SimScan scan;
+    while (stream.next(&scan)) {
+      PointCloud in_base;
+      pcl::transformPointCloud(sim::toPointCloud(scan), in_base, T_base_sensor);
+      if (!queue.push(pipeline.odometryOf(scan.stamp, in_base))) break;
+    }
+    queue.close();
+  });
+  while (const auto scan = queue.pop()) pipeline.takeOdometry(*scan);
+  odometry_thread.join();
+  pipeline.finish();
+
+  EXPECT_EQ(pipeline.stats().keyframes, sequential.pipeline.stats().keyframes);
+  const Trajectory a = sequential.pipeline.keyframeTrajectory();
+  const Trajectory b = pipeline.keyframeTrajectory();
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GT(a.size(), 5u);
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].stamp, b[i].stamp);
+    EXPECT_TRUE(a[i].pose.matrix() == b[i].pose.matrix()) << "keyframe " << i;
+  }
+  EXPECT_EQ(pipeline.sceneGraph().walls.size(), sequential.pipeline.sceneGraph().walls.size());
 }
 
 TEST(Pipeline, OdometryAndWallsOnlyWhenRoomsAndLoopsAreOff) {

@@ -37,6 +37,12 @@ struct ScanOutcome {
   bool recovered = false;  // the odometry re-aligned the scan from its yaw hypotheses
 };
 
+/// The odometry half of Pipeline::processScan for one scan.
+struct ScanOdometry {
+  bool outside_given_poses = false;  // given poses: the stamp lies outside their time span
+  OdometryResult odometry;
+};
+
 /// Counters of a run (timing.json).
 struct PipelineStats {
   size_t scans = 0;
@@ -62,6 +68,14 @@ class Pipeline {
   /// `point_offsets_s`: optional per-point times relative to `stamp` (LidarOdometry::process).
   ScanOutcome processScan(double stamp, const PointCloud& scan_in_base,
                           const std::vector<float>* point_offsets_s = nullptr);
+
+  /// processScan in two halves, so that the odometry of later scans can run on one thread while
+  /// the keyframe stages of earlier ones run on another (tacs_offline): odometryOf reads and
+  /// changes only the odometry's state, takeOdometry everything else. Calling both in scan order
+  /// gives what processScan gives, whichever thread runs which half.
+  ScanOdometry odometryOf(double stamp, const PointCloud& scan_in_base,
+                          const std::vector<float>* point_offsets_s = nullptr);
+  ScanOutcome takeOdometry(const ScanOdometry& scan);
 
   /// Takes the odometry from given poses (T_odom_base by stamp, e.g. a trajectory file of another
   /// odometry or the reference) instead of GICP: each scan gets the pose interpolated at its

@@ -29,16 +29,30 @@ Pipeline::Pipeline(const PipelineConfig& config, const Pose3& T_base_sensor)
 
 ScanOutcome Pipeline::processScan(double stamp, const PointCloud& scan_in_base,
                                   const std::vector<float>* point_offsets_s) {
+  return takeOdometry(odometryOf(stamp, scan_in_base, point_offsets_s));
+}
+
+ScanOdometry Pipeline::odometryOf(double stamp, const PointCloud& scan_in_base,
+                                  const std::vector<float>* point_offsets_s) {
+  ScanOdometry scan;
+  if (given_poses_ && !given_poses_->poseAt(stamp)) {
+    scan.outside_given_poses = true;
+    return scan;
+  }
+  scan.odometry = given_poses_ ? given_poses_->process(stamp, scan_in_base)
+                               : odometry_estimator_.process(stamp, scan_in_base, point_offsets_s);
+  return scan;
+}
+
+ScanOutcome Pipeline::takeOdometry(const ScanOdometry& scan) {
   ScanOutcome outcome;
   ++stats_.scans;
-  if (given_poses_ && !given_poses_->poseAt(stamp)) {
+  if (scan.outside_given_poses) {
     ++stats_.scans_outside_poses;
     outcome.error = "no given pose at the scan's stamp";
     return outcome;
   }
-  const OdometryResult odom =
-      given_poses_ ? given_poses_->process(stamp, scan_in_base)
-                   : odometry_estimator_.process(stamp, scan_in_base, point_offsets_s);
+  const OdometryResult& odom = scan.odometry;
   stage_times_.add("odometry", odom.time_ms);
   stats_.deskewed_scans += odom.deskewed ? 1 : 0;
   stats_.odometry_recoveries += odom.recovered ? 1 : 0;
@@ -50,7 +64,7 @@ ScanOutcome Pipeline::processScan(double stamp, const PointCloud& scan_in_base,
     return outcome;
   }
   outcome.accepted = true;
-  odometry_.push_back({stamp, odom.T_odom_base});
+  odometry_.push_back({odom.stamp, odom.T_odom_base});
   if (odom.is_keyframe) processKeyframe(odom, &outcome);
   return outcome;
 }
