@@ -39,8 +39,13 @@ for w in "${PRIORS[@]}"; do
   [ -f "$REPO/worlds/$w.json" ] || { echo "no world $REPO/worlds/$w.json" >&2; exit 2; }
 done
 CROSS_ONLY="${TACS_CROSS_ONLY:-0}"
-# Session 1 of every world that is a session or a prior.
-read -r -a ALL <<<"$(printf '%s\n' "${WORLDS[@]}" "${PRIORS[@]}" | sort -u | tr '\n' ' ')"
+# Session 1 of every world that is a session or a prior; with TACS_CROSS_ONLY of the priors alone
+# (a session world's own prior is not used then).
+if [ "$CROSS_ONLY" = 1 ]; then
+  read -r -a ALL <<<"$(printf '%s\n' "${PRIORS[@]}" | sort -u | tr '\n' ' ')"
+else
+  read -r -a ALL <<<"$(printf '%s\n' "${WORLDS[@]}" "${PRIORS[@]}" | sort -u | tr '\n' ' ')"
+fi
 
 middle() {  # world -> its middle waypoint
   /usr/bin/python3 -c "import json,sys; print(len(json.load(open(sys.argv[1]))['trajectory']['waypoints'])//2)" \
@@ -55,7 +60,7 @@ second() {  # world prior-run out-dir [extra args]: session 2 of the world again
 export -f middle second
 export REPO OFFLINE
 
-echo "session 1 of every world" >&2
+echo "session 1 of ${#ALL[@]} worlds" >&2
 printf '%s\n' "${ALL[@]}" | xargs -P 2 -I{} \
   sh -c '"$OFFLINE" --world "$REPO/worlds/{}.json" --seed 1 --out "$0/{}.s1" --quiet >"$0/{}.s1.log" 2>&1' "$WORK"
 for w in "${ALL[@]}"; do sha256sum "$WORK/$w.s1"/* >"$WORK/$w.s1.sha"; done
