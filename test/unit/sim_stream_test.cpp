@@ -2,8 +2,12 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <utility>
 
+#include "common/test_paths.h"
+#include "tacs_graphs/sim/robot_path.h"
 #include "tacs_graphs/sim/scan_stream.h"
 
 namespace tacs::sim {
@@ -117,6 +121,44 @@ TEST(SimStream, GroundTruthFollowsWaypoints) {
   SimOptions opt;
   opt.duration_s = 1.0;
   EXPECT_EQ(ScanStream(w, opt).scanCount(), 10u);
+}
+
+// Largest change of the yaw rate along the path [deg/s^2], as a sweep sees it: the rate over
+// 0.05 s windows, compared 0.1 s apart; and the largest such rate [deg/s].
+std::pair<double, double> yawAccelAndRate(const RobotPath& path) {
+  auto yaw = [&](double t) {
+    const Eigen::Vector3d x = path.poseAt(t).linear().col(0);
+    return std::atan2(x.y(), x.x()) * 180.0 / M_PI;
+  };
+  auto rate = [&](double t) { return std::remainder(yaw(t) - yaw(t - 0.05), 360.0) / 0.05; };
+  double max_accel = 0.0, max_rate = 0.0;
+  for (double t = 0.05; t + 0.1 < path.duration(); t += 0.01) {
+    max_accel = std::max(max_accel, std::abs(rate(t + 0.1) - rate(t)) / 0.1);
+    max_rate = std::max(max_rate, std::abs(rate(t)));
+  }
+  return {max_accel, max_rate};
+}
+
+TEST(SimStream, AYawAccelerationLimitRampsTheTurns) {
+  // The legged office at 90 deg/s: its U-turns step the yaw rate from 0 to the limit.
+  World w = loadWorld(test::sourceDir() + "/worlds/legged_office.json");
+  w.trajectory.max_yaw_rate_dps = 90.0;
+  const RobotPath stepped(w, 1, "legged_office");
+  const auto [step_accel, step_rate] = yawAccelAndRate(stepped);
+  EXPECT_GT(step_accel, 800.0);
+  EXPECT_NEAR(step_rate, 90.0, 1.0);
+
+  w.trajectory.max_yaw_accel_dps2 = 180.0;
+  const RobotPath ramped(w, 1, "legged_office");
+  const auto [accel, rate] = yawAccelAndRate(ramped);
+  EXPECT_LT(accel, 1.1 * 180.0);
+  EXPECT_NEAR(rate, 90.0, 1.0);  // long turns still reach the rate limit
+  // Ramping takes time; the path is the same.
+  EXPECT_GT(ramped.duration(), stepped.duration() + 10.0);
+  EXPECT_NEAR(ramped.length(), stepped.length(), 1e-6);
+  const Eigen::Vector3d end_ramped = ramped.poseAt(ramped.duration()).translation();
+  const Eigen::Vector3d end_stepped = stepped.poseAt(stepped.duration()).translation();
+  EXPECT_LT((end_ramped - end_stepped).head<2>().norm(), 1e-6);
 }
 
 TEST(SimStream, MotionDistortionMovesLateFirings) {

@@ -3,7 +3,8 @@
 // path, the base on the floor under it, plus a small smooth vibration (roll, pitch, z) as a ground
 // robot shows. The speed is `speed_mps` on straights; it drops in turns so the yaw rate stays
 // under `max_yaw_rate_dps` (sharp turns become turns in place) and changes by at most
-// `max_accel_mps2` (the robot starts and stops at rest).
+// `max_accel_mps2` (the robot starts and stops at rest); with `max_yaw_accel_dps2` the yaw rate
+// too ramps up and down instead of stepping.
 #pragma once
 
 #include <cstdint>
@@ -41,6 +42,8 @@ class RobotPath {
                     const std::string& name);
   void computeHeadings();  // yaw_
   /// time_: the speed profile under the yaw-rate and acceleration limits.
+  /// Splits every sample step that turns by more than `max_dyaw` [rad] into equal parts.
+  void subdivideTurns(double max_dyaw);
   void computeTiming(const TrajectorySpec& spec);
 
   std::vector<Eigen::Vector3d> samples_;  // x, y, floor z

@@ -56,12 +56,14 @@ struct TrajectorySpec {
   /// Waypoint x, y and z; z is NaN for [x, y] waypoints (robot on the floor under it).
   std::vector<Eigen::Vector3d> waypoints;
   double speed_mps = 0.8;
-  int laps = 1;                    // > 1: drive back to the first waypoint and repeat
-  double corner_radius_m = 0.5;    // half-width of the path smoothing window at corners
-  double max_yaw_rate_dps = 45.0;  // the robot slows down in turns (turns in place at U-turns)
-  double max_accel_mps2 = 0.5;     // starts and stops at rest
-  double jitter_deg = 0.3;         // amplitude of the roll/pitch vibration of a ground robot
-  double jitter_z_m = 0.004;       // amplitude of the vertical vibration
+  int laps = 1;                     // > 1: drive back to the first waypoint and repeat
+  double corner_radius_m = 0.5;     // half-width of the path smoothing window at corners
+  double max_yaw_rate_dps = 45.0;   // the robot slows down in turns (turns in place at U-turns)
+  double max_accel_mps2 = 0.5;      // starts and stops at rest
+  double max_yaw_accel_dps2 = 0.0;  // the yaw rate changes by at most this per second (0: at
+                                    // once, as the first worlds were made)
+  double jitter_deg = 0.3;          // amplitude of the roll/pitch vibration of a ground robot
+  double jitter_z_m = 0.004;        // amplitude of the vertical vibration
 };
 
 struct SensorSpec {

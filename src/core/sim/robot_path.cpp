@@ -77,6 +77,9 @@ RobotPath::RobotPath(const World& world, uint64_t seed, const std::string& name)
   jitter_z_ = spec.jitter_z_m;
   roundCorners(world, densePolyline(world, name), name);
   computeHeadings();
+  // A yaw rate that ramps needs turns sampled finely in angle: the rate is constant along each
+  // sample step, and a turn in place may turn tens of degrees in one.
+  if (spec.max_yaw_accel_dps2 > 0.0) subdivideTurns(0.25 * kPi / 180.0);
   computeTiming(spec);
   SplitMix rng(mixSeed(seed, 0x70617468));  // "path"
   for (double& p : phase_) p = 2.0 * kPi * rng.uniform();
@@ -126,29 +129,83 @@ void RobotPath::computeHeadings() {
   }
 }
 
-void RobotPath::computeTiming(const TrajectorySpec& spec) {
-  // Speed profile: yaw-rate limit per segment, then acceleration limits forward and backward.
-  const int n = static_cast<int>(samples_.size());
-  const double max_rate = spec.max_yaw_rate_dps * kPi / 180.0;
-  std::vector<double> v(n, spec.speed_mps);
-  for (int i = 1; i < n; ++i) {
-    const double ds = arc_[i] - arc_[i - 1], dyaw = std::abs(yaw_[i] - yaw_[i - 1]);
-    if (dyaw > 1e-12) v[i] = std::min(v[i], max_rate * ds / dyaw);
-  }
-  v[0] = v[n - 1] = 0.0;
-  for (int pass = 0; pass < 2; ++pass) {
-    for (int k = 1; k < n; ++k) {
-      const int i = pass == 0 ? k : n - 1 - k, j = pass == 0 ? i - 1 : i + 1;
-      const double ds = std::abs(arc_[i] - arc_[j]);
-      v[i] = std::min(v[i], std::sqrt(v[j] * v[j] + 2.0 * spec.max_accel_mps2 * ds));
+void RobotPath::subdivideTurns(double max_dyaw) {
+  std::vector<Eigen::Vector3d> samples{samples_.front()};
+  std::vector<double> arc{arc_.front()}, yaw{yaw_.front()};
+  for (size_t i = 1; i < samples_.size(); ++i) {
+    const int steps =
+        std::max(1, static_cast<int>(std::ceil(std::abs(yaw_[i] - yaw_[i - 1]) / max_dyaw)));
+    for (int k = 1; k <= steps; ++k) {
+      const double f = static_cast<double>(k) / steps;
+      samples.push_back(samples_[i - 1] + f * (samples_[i] - samples_[i - 1]));
+      arc.push_back(arc_[i - 1] + f * (arc_[i] - arc_[i - 1]));
+      yaw.push_back(yaw_[i - 1] + f * (yaw_[i] - yaw_[i - 1]));
     }
   }
-  time_.assign(n, 0.0);
+  samples_ = std::move(samples);
+  arc_ = std::move(arc);
+  yaw_ = std::move(yaw);
+}
+
+void RobotPath::computeTiming(const TrajectorySpec& spec) {
+  // Speed profile: yaw-rate limit per segment, then acceleration limits forward and backward.
+  // With a yaw-acceleration limit, the segments whose yaw rate would change faster get a lower
+  // rate (and their ends a lower speed), and the profile is made again until none does.
+  const int n = static_cast<int>(samples_.size());
+  const double max_rate = spec.max_yaw_rate_dps * kPi / 180.0;
+  const double max_yaw_accel = spec.max_yaw_accel_dps2 * kPi / 180.0;
+  std::vector<double> speed_cap(n, spec.speed_mps), rate_cap(n, max_rate), v(n), rate(n, 0.0);
   for (int i = 1; i < n; ++i) {
     const double ds = arc_[i] - arc_[i - 1], dyaw = std::abs(yaw_[i] - yaw_[i - 1]);
-    const double vm = 0.5 * (v[i] + v[i - 1]);
-    // At least as long as the turn takes at the yaw-rate limit (turning in place: ds ~ 0).
-    time_[i] = time_[i - 1] + std::max(vm > 1e-9 ? ds / vm : 0.0, dyaw / max_rate);
+    if (dyaw > 1e-12) speed_cap[i] = std::min(speed_cap[i], max_rate * ds / dyaw);
+  }
+  for (int round = 0; round < 50; ++round) {
+    v = speed_cap;
+    v[0] = v[n - 1] = 0.0;
+    for (int pass = 0; pass < 2; ++pass) {
+      for (int k = 1; k < n; ++k) {
+        const int i = pass == 0 ? k : n - 1 - k, j = pass == 0 ? i - 1 : i + 1;
+        const double ds = std::abs(arc_[i] - arc_[j]);
+        v[i] = std::min(v[i], std::sqrt(v[j] * v[j] + 2.0 * spec.max_accel_mps2 * ds));
+      }
+    }
+    time_.assign(n, 0.0);
+    for (int i = 1; i < n; ++i) {
+      const double ds = arc_[i] - arc_[i - 1], dyaw = std::abs(yaw_[i] - yaw_[i - 1]);
+      const double vm = 0.5 * (v[i] + v[i - 1]);
+      // At least as long as the turn takes at the yaw-rate limit (turning in place: ds ~ 0).
+      const double dt = std::max(vm > 1e-9 ? ds / vm : 0.0, dyaw / rate_cap[i]);
+      time_[i] = time_[i - 1] + dt;
+      rate[i] = dt > 0.0 ? dyaw / dt : 0.0;
+    }
+    if (max_yaw_accel <= 0.0) return;
+    // The yaw rate, as a function of the yaw turned, changes as the speed does along the arc:
+    // w^2 by at most 2 alpha per radian, from rest at both ends.
+    std::vector<double> limited = rate;
+    double before = 0.0;  // at rest before the first segment
+    for (int i = 1; i < n; ++i) {
+      const double dyaw = std::abs(yaw_[i] - yaw_[i - 1]);
+      limited[i] = std::min(limited[i], std::sqrt(before * before + 2.0 * max_yaw_accel * dyaw));
+      before = limited[i];
+    }
+    double after = 0.0;  // and after the last
+    for (int i = n - 1; i >= 1; --i) {
+      const double dyaw = std::abs(yaw_[i] - yaw_[i - 1]);
+      limited[i] = std::min(limited[i], std::sqrt(after * after + 2.0 * max_yaw_accel * dyaw));
+      after = limited[i];
+    }
+    bool changed = false;
+    for (int i = 1; i < n; ++i) {
+      if (limited[i] >= rate[i] * (1.0 - 1e-9) || rate[i] <= 0.0) continue;
+      const double dyaw = std::abs(yaw_[i] - yaw_[i - 1]);
+      const double dt = dyaw / std::max(limited[i], 1e-6);
+      const double ds = arc_[i] - arc_[i - 1];
+      rate_cap[i] = std::min(rate_cap[i], std::max(limited[i], 1e-6));
+      speed_cap[i] = std::min(speed_cap[i], ds / dt);
+      speed_cap[i - 1] = std::min(speed_cap[i - 1], ds / dt);
+      changed = true;
+    }
+    if (!changed) return;
   }
 }
 

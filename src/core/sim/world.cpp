@@ -154,6 +154,8 @@ void parseTrajectory(ObjectReader& top, TrajectorySpec* t) {
   if (t->corner_radius_m < 0) r.fail("trajectory.corner_radius_m", "must be >= 0");
   r.positive("max_yaw_rate_dps", &t->max_yaw_rate_dps);
   r.positive("max_accel_mps2", &t->max_accel_mps2);
+  r.number("max_yaw_accel_dps2", &t->max_yaw_accel_dps2);
+  if (t->max_yaw_accel_dps2 < 0) r.fail("trajectory.max_yaw_accel_dps2", "must be >= 0 (0: none)");
   r.number("jitter_deg", &t->jitter_deg);
   r.number("jitter_z_m", &t->jitter_z_m);
   if (t->jitter_deg < 0 || t->jitter_deg > 10)
