@@ -206,12 +206,13 @@ std::string validationError(const OdometryConfig& config) {
 
 // Drives along the middle of an empty box room, which looks the same turned by 180 deg, with a
 // recovery tried on every scan; returns the largest yaw error over the scans.
-double worstYawInASymmetricRoom(double min_gain) {
+double worstYawInASymmetricRoom(double min_gain, double max_angular_accel_dps2) {
   test::BoxRoom room;
   room.obstacles.clear();
   OdometryConfig config;
   config.recovery_relative_fit = 1.0;  // every scan fits below its predecessors' mean at times
   config.recovery_min_gain = min_gain;
+  config.recovery_max_angular_accel_dps2 = max_angular_accel_dps2;
   LidarOdometry odometry{config};
   const auto pose = [](int i) { return poseFromXyzRpy(4.0 + 0.05 * i, 3.5, 0.5, 0.0, 0.0, 0.0); };
   double worst = 0.0;
@@ -223,8 +224,14 @@ double worstYawInASymmetricRoom(double min_gain) {
 }
 
 TEST(LidarOdometry, ATurnedViewThatFitsAsWellNeverFlipsThePose) {
-  EXPECT_GT(worstYawInASymmetricRoom(0.0), 90.0);  // the trap: any better fit wins, and flips
-  EXPECT_LT(worstYawInASymmetricRoom(OdometryConfig().recovery_min_gain), 1.0);
+  constexpr double kAnyTurn = 1e9;                           // deg/s^2: every hypothesis reachable
+  EXPECT_GT(worstYawInASymmetricRoom(0.0, kAnyTurn), 90.0);  // the trap: any better fit flips
+  EXPECT_LT(worstYawInASymmetricRoom(OdometryConfig().recovery_min_gain, kAnyTurn), 1.0);
+}
+
+TEST(LidarOdometry, AHypothesisTheRobotCannotReachNeverReplacesAPlausibleRegistration) {
+  // The same trap, any better fit taken, but only turns of up to 18 deg in 0.1 s are reachable.
+  EXPECT_LT(worstYawInASymmetricRoom(0.0, OdometryConfig().recovery_max_angular_accel_dps2), 1.0);
 }
 
 TEST(OdometryConfig, ValidateNamesTheBadField) {
@@ -253,6 +260,10 @@ TEST(OdometryConfig, ValidateNamesTheBadField) {
   config = OdometryConfig();
   config.recovery_min_gain = -0.1;
   EXPECT_NE(validationError(config).find("odometry.recovery_min_gain"), std::string::npos);
+  config = OdometryConfig();
+  config.recovery_max_angular_accel_dps2 = 0.0;
+  EXPECT_NE(validationError(config).find("odometry.recovery_max_angular_accel_dps2"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -80,6 +80,10 @@ struct OdometryConfig {
   // A recovery replaces a registration within the limits only when it fits this much larger a
   // share of the scan (one outside the limits is replaced by any better fit) [-].
   double recovery_min_gain = 0.05;
+  // ... and only by a hypothesis the sensor's carrier could reach: one turned from the
+  // constant-velocity guess by no more than this angular acceleration turns it within the scan
+  // interval dt (0.5 a dt^2: 18 deg at 10 Hz, no bound at 1 Hz) [deg/s^2].
+  double recovery_max_angular_accel_dps2 = 3600.0;
   // Yaw offsets [deg] tried from the guess when recovering (about the base z axis), each
   // aligned coarse to fine and scored by its share of fitting points.
   std::vector<double> recovery_yaw_deg = {0.0, 30.0, -30.0, 60.0, -60.0, 90.0, -90.0, 180.0};
@@ -124,6 +128,7 @@ struct OdometryConfig {
     v("recovery_min_fit", recovery_min_fit);
     v("recovery_relative_fit", recovery_relative_fit);
     v("recovery_min_gain", recovery_min_gain);
+    v("recovery_max_angular_accel_dps2", recovery_max_angular_accel_dps2);
     v("recovery_yaw_deg", recovery_yaw_deg);
     v("recovery_voxel_m", recovery_voxel_m);
     v("recovery_coarse_iterations", recovery_coarse_iterations);
@@ -197,9 +202,10 @@ class LidarOdometry {
   /// Aligns the scan to the local map from the guess, coarse to fine; falls back to the yaw
   /// hypotheses when the result does not fit or moved the guess beyond the adaptive limits.
   /// `sweep_times`: the scan's point times when the sweep's motion is estimated, else null.
+  /// `dt`: seconds since the last registered scan.
   GicpResult registerScan(const GicpCloud::ConstPtr& scan, const PointCloud& cloud,
                           const std::vector<float>* sweep_times, const Pose3& guess, bool reset,
-                          OdometryResult* result) const;
+                          double dt, OdometryResult* result) const;
   GicpResult align(const GicpCloud::ConstPtr& scan, double gate_m, const Pose3& from,
                    double robust_m, const std::vector<float>* sweep_times = nullptr) const {
     return alignTo(local_map_, scan, gate_m, from, robust_m, config_.gicp.max_iterations,
@@ -215,6 +221,8 @@ class LidarOdometry {
   std::string rejection(const Pose3& guess, bool reset, const OdometryResult& result) const;
   double fitOf(const GicpCloud::ConstPtr& scan, const Pose3& T) const;
   bool withinLimits(const Pose3& guess, const Pose3& T) const;
+  /// T turns away from the guess by no more than recovery_max_angular_accel_dps2 turns in dt.
+  bool reachableIn(double dt, const Pose3& guess, const Pose3& T) const;
   GicpResult recoverFromHypotheses(const PointCloud& cloud, const GicpCloud::ConstPtr& scan,
                                    const Pose3& guess) const;
   void updateMotionModel(double stamp, const Pose3& guess, const Pose3& pose, bool reset);
