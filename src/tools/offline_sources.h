@@ -32,6 +32,8 @@ struct SensorScan {
   tacs::PointTimes times;  // per-point times relative to `stamp` (times.ok: usable)
 };
 
+/// next() and baseToSensor() run on OdometryAhead's thread; size() (fixed at opening) and the
+/// ground truth are read by the caller.
 class ScanSource {
  public:
   virtual ~ScanSource() = default;
