@@ -17,6 +17,7 @@
 #include "tacs_graphs/common/timing.h"
 #include "tacs_graphs/common/trajectory_io.h"
 #include "tacs_graphs/eval/trajectory_metrics.h"
+#include "tacs_graphs/odometry/parallel.h"
 #include "tacs_graphs/pipeline/run_folder.h"
 #include "tacs_graphs/pipeline/staged_run_folder.h"
 #include "tacs_graphs/relocalization/prior_session.h"
@@ -184,6 +185,7 @@ extern "C" void onInterrupt(int) {
 }
 
 int run(const Options& o) {
+  tacs::setMinItemsPerThread(512);  // alone on the cores: split a VLP-16 scan (parallel.h)
   // The run is written beside --out and swapped in whole at the end; --out is checked now.
   tacs::StagedRunFolder out(o.out);
   std::signal(SIGINT, onInterrupt);

@@ -17,13 +17,18 @@ inline int resolveThreads(int num_threads) {
   return num_threads > 0 ? num_threads : omp_get_max_threads();
 }
 
-/// Threads worth starting for n items: each thread gets at least kMinItemsPerThread items, since
-/// waking a thread costs tens of microseconds, a few hundred points' worth of searches. A
-/// 2.8k-point VLP-16 scan is worth splitting (open_office read from a bag: 70 -> 85 scans/s
-/// against 2048 items per thread); 256 gains nothing more.
+/// Items per thread below which a loop does not wake another thread: waking one costs tens of
+/// microseconds, a few hundred points' worth of searches, and far more when the cores are busy
+/// with other work. 2048 by default, for the node suite, where six nodes share the cores: with
+/// 512, the odometry node lost 832 of large_hall's 3659 scans at 4x playback (32 with 2048).
+/// tacs_offline, alone on the machine, sets 512: a 2.8k-point VLP-16 scan is then split
+/// (open_office read from a bag: 70 -> 83-94 scans/s; 256 gains nothing more).
+int64_t minItemsPerThread();
+void setMinItemsPerThread(int64_t items);
+
+/// Threads worth starting for n items (at least minItemsPerThread() each).
 inline int threadsFor(int64_t n, int num_threads) {
-  constexpr int64_t kMinItemsPerThread = 512;
-  const int64_t useful = std::max<int64_t>(1, n / kMinItemsPerThread);
+  const int64_t useful = std::max<int64_t>(1, n / minItemsPerThread());
   return static_cast<int>(std::min<int64_t>(resolveThreads(num_threads), useful));
 }
 
