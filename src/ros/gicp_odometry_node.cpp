@@ -139,6 +139,7 @@ void GicpOdometryNode::cloudCallback(const sensor_msgs::PointCloud2::ConstPtr& m
       acknowledge(waiting_for_odometry_.front()->header);
       waiting_for_odometry_.pop_front();
       warnings_.warn("cloud", "no external odometry for the scan's time, scan dropped");
+      ++scans_dropped_;
     }
     return;
   }
@@ -160,6 +161,7 @@ void GicpOdometryNode::processCloud(const sensor_msgs::PointCloud2::ConstPtr& ms
     warnings_.warn("cloud", "time jump back",
                    "time jump back: stamp " + std::to_string(stamp) + " is not after " +
                        std::to_string(*last_stamp_) + ", scan skipped");
+    ++scans_dropped_;
     return;
   }
   TimedScan timed = fromRosCloudWithTimes(*msg, stamp, config_.odometry.point_times);
@@ -167,6 +169,7 @@ void GicpOdometryNode::processCloud(const sensor_msgs::PointCloud2::ConstPtr& ms
   PointCloud& scan = timed.cloud;
   if (!conv.ok) {
     warnings_.warn("cloud", WarnOnce::reasonKey(conv.error), conv.error + ", scan skipped");
+    ++scans_dropped_;
     return;
   }
   const std::string sensor_frame =
@@ -184,6 +187,7 @@ void GicpOdometryNode::processCloud(const sensor_msgs::PointCloud2::ConstPtr& ms
                                       : external_->process(stamp, scan_in_base);
   if (!result.ok) {
     warnings_.warn("odometry", WarnOnce::reasonKey(result.error), result.error + ", scan skipped");
+    ++scans_dropped_;
     return;
   }
   last_stamp_ = stamp;

@@ -48,7 +48,8 @@ class GicpOdometryNode {
   GicpOdometryNode(ros::NodeHandle& nh, ros::NodeHandle& pnh);
 
   size_t scansProcessed() const { return scans_processed_; }
-  size_t scansDropped() const { return warnings_.total(); }
+  /// Scans skipped for bad input (a scan used without deskew is not one).
+  size_t scansDropped() const { return scans_dropped_; }
   size_t scansMissing() const { return scan_gaps_.missingTotal(); }
 
  private:
@@ -68,6 +69,7 @@ class GicpOdometryNode {
   bool publish_tf_ = true;
   std::unique_ptr<LidarOdometry> gicp_;
   std::unique_ptr<ExternalOdometry> external_;
+  size_t scans_dropped_ = 0;
   std::deque<sensor_msgs::PointCloud2::ConstPtr> waiting_for_odometry_;
 
   ros::Subscriber cloud_sub_;
