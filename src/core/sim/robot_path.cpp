@@ -154,10 +154,15 @@ void RobotPath::computeTiming(const TrajectorySpec& spec) {
   const int n = static_cast<int>(samples_.size());
   const double max_rate = spec.max_yaw_rate_dps * kPi / 180.0;
   const double max_yaw_accel = spec.max_yaw_accel_dps2 * kPi / 180.0;
+  // Arc length and yaw turned over each sample step (index i: from i - 1 to i).
+  std::vector<double> step(n, 0.0), turn(n, 0.0);
+  for (int i = 1; i < n; ++i) {
+    step[i] = arc_[i] - arc_[i - 1];
+    turn[i] = std::abs(yaw_[i] - yaw_[i - 1]);
+  }
   std::vector<double> speed_cap(n, spec.speed_mps), rate_cap(n, max_rate), v(n), rate(n, 0.0);
   for (int i = 1; i < n; ++i) {
-    const double ds = arc_[i] - arc_[i - 1], dyaw = std::abs(yaw_[i] - yaw_[i - 1]);
-    if (dyaw > 1e-12) speed_cap[i] = std::min(speed_cap[i], max_rate * ds / dyaw);
+    if (turn[i] > 1e-12) speed_cap[i] = std::min(speed_cap[i], max_rate * step[i] / turn[i]);
   }
   for (int round = 0; round < 50; ++round) {
     v = speed_cap;
@@ -171,12 +176,11 @@ void RobotPath::computeTiming(const TrajectorySpec& spec) {
     }
     time_.assign(n, 0.0);
     for (int i = 1; i < n; ++i) {
-      const double ds = arc_[i] - arc_[i - 1], dyaw = std::abs(yaw_[i] - yaw_[i - 1]);
       const double vm = 0.5 * (v[i] + v[i - 1]);
       // At least as long as the turn takes at the yaw-rate limit (turning in place: ds ~ 0).
-      const double dt = std::max(vm > 1e-9 ? ds / vm : 0.0, dyaw / rate_cap[i]);
+      const double dt = std::max(vm > 1e-9 ? step[i] / vm : 0.0, turn[i] / rate_cap[i]);
       time_[i] = time_[i - 1] + dt;
-      rate[i] = dt > 0.0 ? dyaw / dt : 0.0;
+      rate[i] = dt > 0.0 ? turn[i] / dt : 0.0;
     }
     if (max_yaw_accel <= 0.0) return;
     // The yaw rate, as a function of the yaw turned, changes as the speed does along the arc:
@@ -184,25 +188,21 @@ void RobotPath::computeTiming(const TrajectorySpec& spec) {
     std::vector<double> limited = rate;
     double before = 0.0;  // at rest before the first segment
     for (int i = 1; i < n; ++i) {
-      const double dyaw = std::abs(yaw_[i] - yaw_[i - 1]);
-      limited[i] = std::min(limited[i], std::sqrt(before * before + 2.0 * max_yaw_accel * dyaw));
+      limited[i] = std::min(limited[i], std::sqrt(before * before + 2.0 * max_yaw_accel * turn[i]));
       before = limited[i];
     }
     double after = 0.0;  // and after the last
     for (int i = n - 1; i >= 1; --i) {
-      const double dyaw = std::abs(yaw_[i] - yaw_[i - 1]);
-      limited[i] = std::min(limited[i], std::sqrt(after * after + 2.0 * max_yaw_accel * dyaw));
+      limited[i] = std::min(limited[i], std::sqrt(after * after + 2.0 * max_yaw_accel * turn[i]));
       after = limited[i];
     }
     bool changed = false;
     for (int i = 1; i < n; ++i) {
       if (limited[i] >= rate[i] * (1.0 - 1e-9) || rate[i] <= 0.0) continue;
-      const double dyaw = std::abs(yaw_[i] - yaw_[i - 1]);
-      const double dt = dyaw / std::max(limited[i], 1e-6);
-      const double ds = arc_[i] - arc_[i - 1];
+      const double dt = turn[i] / std::max(limited[i], 1e-6);
       rate_cap[i] = std::min(rate_cap[i], std::max(limited[i], 1e-6));
-      speed_cap[i] = std::min(speed_cap[i], ds / dt);
-      speed_cap[i - 1] = std::min(speed_cap[i - 1], ds / dt);
+      speed_cap[i] = std::min(speed_cap[i], step[i] / dt);
+      speed_cap[i - 1] = std::min(speed_cap[i - 1], step[i] / dt);
       changed = true;
     }
     if (!changed) return;
