@@ -20,6 +20,7 @@
 #include "tacs_graphs/common/trajectory_io.h"
 #include "tacs_graphs/eval/trajectory_metrics.h"
 #include "tacs_graphs/odometry/lidar_odometry.h"
+#include "tacs_graphs/odometry/parallel.h"
 #include "tacs_graphs/pipeline/pipeline_config.h"
 
 namespace {
@@ -66,12 +67,14 @@ int main(int argc, char** argv) {
       config_path = argv[++i];
     } else if (a == "--every" && i + 1 < argc) {
       every = std::max(1, std::atoi(argv[++i]));
+    } else if (a == "--min-items-per-thread" && i + 1 < argc) {
+      tacs::setMinItemsPerThread(std::max(1, std::atoi(argv[++i])));
     } else if (a == "--steps") {
       steps = true;
     } else {
       std::fprintf(stderr,
                    "usage: bench_real_odometry [--data DIR] [--config YAML] [--every N] "
-                   "[--steps]\n");
+                   "[--steps] [--min-items-per-thread N]\n");
       return 2;
     }
   }

@@ -30,9 +30,10 @@ using Edit = std::function<void(int, PointCloud*, double* stamp)>;
 // Runs `count` scans 0.1 s apart (plus `gap_s` of unseen driving before scan `gap_at`); `edit`
 // may change a rendered scan or its stamp. Checks the pose of every accepted scan.
 std::vector<OdometryResult> runSequence(int count, const Edit& edit = nullptr, int gap_at = -1,
-                                        double gap_s = 0.0) {
+                                        double gap_s = 0.0,
+                                        const OdometryConfig& config = OdometryConfig()) {
   const test::BoxRoom room;
-  LidarOdometry odometry{OdometryConfig()};
+  LidarOdometry odometry{config};
   const Pose3 T_world_odom = truePose(0.0);
   std::vector<OdometryResult> results;
   for (int i = 0; i < count; ++i) {
@@ -79,6 +80,21 @@ TEST(LidarOdometry, TracksASyntheticMovingSequence) {
   // 1.5 m and 21 deg of motion with keyframes every 0.5 m or 15 deg.
   EXPECT_GE(keyframes, 3u);
   EXPECT_LE(keyframes, 8u);
+}
+
+TEST(LidarOdometry, AWideGateOnASubsetOfTheScanTracksAsTheWholeScanDoes) {
+  OdometryConfig whole, subset;
+  whole.wide_gate_max_points = 0;
+  subset.wide_gate_max_points = 300;
+  const auto all = runSequence(25, nullptr, -1, 0.0, whole);
+  const auto part = runSequence(25, nullptr, -1, 0.0, subset);  // checks every pose as well
+  ASSERT_EQ(countOk(part), 25);
+  for (size_t i = 1; i < part.size(); ++i) {
+    // The wide pass's scores count the subset's points; the narrow refinement used them all.
+    EXPECT_LE(part[i].registration.inliers, 300u) << "scan " << i;
+    EXPECT_GT(all[i].registration.inliers, 1000u) << "scan " << i;
+    EXPECT_LT(translationError(part[i].T_odom_base, all[i].T_odom_base), 0.005) << "scan " << i;
+  }
 }
 
 TEST(LidarOdometry, EmptyScanIsRejectedAndTrackingContinues) {
@@ -264,6 +280,9 @@ TEST(OdometryConfig, ValidateNamesTheBadField) {
   config.recovery_max_angular_accel_dps2 = 0.0;
   EXPECT_NE(validationError(config).find("odometry.recovery_max_angular_accel_dps2"),
             std::string::npos);
+  config = OdometryConfig();
+  config.wide_gate_max_points = -1;
+  EXPECT_NE(validationError(config).find("odometry.wide_gate_max_points"), std::string::npos);
 }
 
 }  // namespace

@@ -30,6 +30,8 @@ void OdometryConfig::validate() const {
                 "odometry.refine_correspondence_distance_m", "must be >= 0 (0 = off)");
   requireConfig(refine_robust_plane_distance_m >= 0.0, "odometry.refine_robust_plane_distance_m",
                 "must be >= 0 (0 = least squares)");
+  requireConfig(wide_gate_max_points >= 0, "odometry.wide_gate_max_points",
+                "must be >= 0 (0 = all points)");
   requireConfig(min_inlier_ratio >= 0.0 && min_inlier_ratio <= 1.0, "odometry.min_inlier_ratio",
                 "must be in [0, 1]");
   requireConfig(max_correction_m > 0.0, "odometry.max_correction_m", "must be > 0");
@@ -210,6 +212,7 @@ bool LidarOdometry::reachableIn(double dt, const Pose3& guess, const Pose3& T) c
 
 GicpResult LidarOdometry::recoverFromHypotheses(const PointCloud& cloud,
                                                 const GicpCloud::ConstPtr& scan,
+                                                const GicpCloud::ConstPtr& fine_source,
                                                 const Pose3& guess) const {
   // Coarse to fine from each yaw about the base's z axis: a sparse source under the wide gate
   // finds the basin, the full scan under the normal gate settles in it; the hypothesis whose
@@ -254,7 +257,7 @@ GicpResult LidarOdometry::recoverFromHypotheses(const PointCloud& cloud,
                    [&](int a, int b) { return coarse_fit[a] > coarse_fit[b]; });
   for (int i : order) {
     if (coarse_fit[i] <= best_fit) continue;  // the fine pass rarely gains what the coarse lacks
-    GicpResult fine = align(scan, config_.gicp.max_correspondence_distance_m, coarse[i],
+    GicpResult fine = align(fine_source, config_.gicp.max_correspondence_distance_m, coarse[i],
                             config_.gicp.robust_plane_distance_m);
     const double fit = fitOf(scan, fine.T_target_source);
     if (fit > best_fit) best_fit = fit, best = fine;
@@ -267,13 +270,17 @@ GicpResult LidarOdometry::registerScan(const GicpCloud::ConstPtr& scan, const Po
                                        bool reset, double dt, OdometryResult* result) const {
   const double gate_m = config_.gicp.max_correspondence_distance_m;
   const double robust_m = config_.gicp.robust_plane_distance_m;
+  // The wide gates only have to reach the narrow gate's basin: a subset of a dense scan does.
+  std::vector<float> subset_times;
+  const GicpCloud::ConstPtr wide = wideGateSource(scan, sweep_times, &subset_times);
   Pose3 start = guess;
   if (reset) {  // no motion prior: a coarse pass with wide gating widens the basin
     start =
-        align(scan, std::max(config_.recovery_correspondence_distance_m, gate_m), guess, robust_m)
+        align(wide, std::max(config_.recovery_correspondence_distance_m, gate_m), guess, robust_m)
             .T_target_source;
   }
-  GicpResult reg = align(scan, gate_m, start, robust_m, sweep_times);
+  GicpResult reg = align(wide, gate_m, start, robust_m,
+                         wide == scan || !sweep_times ? sweep_times : &subset_times);
   result->fit = fitOf(scan, reg.T_target_source);
   // A rectangular room has false minima a quarter turn away that still fit half the scan: the
   // fit is judged against the recent scans' too, not only against the absolute floor.
@@ -281,7 +288,7 @@ GicpResult LidarOdometry::registerScan(const GicpCloud::ConstPtr& scan, const Po
       std::max(config_.recovery_min_fit, config_.recovery_relative_fit * recent_fit_);
   const bool plausible = withinLimits(guess, reg.T_target_source);
   if (result->fit < min_fit || !plausible) {
-    GicpResult recovered = recoverFromHypotheses(cloud, scan, guess);
+    GicpResult recovered = recoverFromHypotheses(cloud, scan, wide, guess);
     const double fit = fitOf(scan, recovered.T_target_source);
     // A plausible registration (within the motion limits) that merely fits a little less than
     // usual is kept unless a hypothesis fits clearly better: in repetitive stacks and aisles the
@@ -298,6 +305,27 @@ GicpResult LidarOdometry::registerScan(const GicpCloud::ConstPtr& scan, const Po
     }
   }
   return reg;
+}
+
+GicpCloud::ConstPtr LidarOdometry::wideGateSource(const GicpCloud::ConstPtr& scan,
+                                                  const std::vector<float>* sweep_times,
+                                                  std::vector<float>* subset_times) const {
+  const double refine_m = config_.refine_correspondence_distance_m;
+  const bool refined = refine_m > 0.0 && refine_m < config_.gicp.max_correspondence_distance_m;
+  const size_t budget = static_cast<size_t>(std::max(0, config_.wide_gate_max_points));
+  if (!refined || budget == 0 || scan->size() <= budget) return scan;
+  // Every stride-th point: the subset covers the scan as evenly as the scan's own order does.
+  const size_t stride = (scan->size() + budget - 1) / budget;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Matrix3d> covariances;
+  points.reserve(budget);
+  covariances.reserve(budget);
+  for (size_t i = 0; i < scan->size(); i += stride) {
+    points.push_back(scan->points()[i]);
+    covariances.push_back(scan->covariances()[i]);
+    if (sweep_times) subset_times->push_back((*sweep_times)[i]);
+  }
+  return GicpCloud::fromParts(std::move(points), std::move(covariances));
 }
 
 void LidarOdometry::updateMotionModel(double stamp, const Pose3& guess, const Pose3& pose,
