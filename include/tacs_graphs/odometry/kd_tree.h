@@ -62,10 +62,10 @@ class KdTree3 {
   float rootGap(const Eigen::Vector3f& query, float* offset) const;
 
   std::vector<Node> nodes_;
-  Eigen::Vector3f lo_, hi_;      // bounding box of all points
-  std::vector<float> xyz_;       // leaf-ordered points, 3 floats each
-  std::vector<uint32_t> ids_;    // original index of each leaf-ordered point
-  std::vector<uint32_t> where_;  // leaf-ordered position of each original index
+  Eigen::Vector3f lo_, hi_;       // bounding box of all points
+  std::vector<float> x_, y_, z_;  // leaf-ordered point coordinates, one array per axis
+  std::vector<uint32_t> ids_;     // original index of each leaf-ordered point
+  std::vector<uint32_t> where_;   // leaf-ordered position of each original index
 };
 
 }  // namespace tacs

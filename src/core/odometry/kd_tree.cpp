@@ -69,11 +69,13 @@ KdTree3::KdTree3(const std::vector<Eigen::Vector3d>& points) {
   nodes_.reserve(2 * (n / kLeafSize + 1));
   std::tie(lo_, hi_) = boundsOf(order, 0, n, floats);
   if (n > 0) build(order, 0, n, floats, lo_, hi_);
-  xyz_.resize(3 * static_cast<size_t>(n));
+  for (auto* axis : {&x_, &y_, &z_}) axis->resize(n);
   where_.resize(n);
   for (uint32_t pos = 0; pos < n; ++pos) {
-    std::copy(floats[order[pos]].data(), floats[order[pos]].data() + 3,
-              &xyz_[3 * static_cast<size_t>(pos)]);
+    const Eigen::Vector3f& p = floats[order[pos]];
+    x_[pos] = p.x();
+    y_[pos] = p.y();
+    z_[pos] = p.z();
     where_[order[pos]] = pos;
   }
   ids_ = std::move(order);
@@ -127,8 +129,20 @@ void KdTree3::search(uint32_t index, const float* q, float* offset, float cell_s
                      Result& result) const {
   const Node& node = nodes_[index];
   if (node.axis == kLeaf) {
-    for (uint32_t pos = node.a; pos < node.b; ++pos) {
-      result.offer(squaredDistance(q, &xyz_[3 * static_cast<size_t>(pos)]), ids_[pos]);
+    // The leaf's distances first, in a loop the compiler vectorises (coordinates stored axis by
+    // axis), then the few below the bound offered one by one. A leaf of coinciding points may
+    // exceed kLeafSize: it is taken in chunks.
+    float dist[kLeafSize];
+    for (uint32_t begin = node.a; begin < node.b; begin += kLeafSize) {
+      const uint32_t n = std::min<uint32_t>(kLeafSize, node.b - begin);
+      const float *xs = &x_[begin], *ys = &y_[begin], *zs = &z_[begin];
+      for (uint32_t j = 0; j < n; ++j) {
+        const float dx = q[0] - xs[j], dy = q[1] - ys[j], dz = q[2] - zs[j];
+        dist[j] = dx * dx + dy * dy + dz * dz;
+      }
+      for (uint32_t j = 0; j < n; ++j) {
+        if (dist[j] < result.bound()) result.offer(dist[j], ids_[begin + j]);
+      }
     }
     return;
   }
@@ -157,7 +171,7 @@ int64_t KdTree3::nearest(const Eigen::Vector3f& query, float bound_sq, float* di
   NearestResult result{bound_sq};
   if (hint >= 0 && static_cast<size_t>(hint) < where_.size()) {
     // Only strictly closer points replace it: the bound is the hint's own float distance.
-    result.offer(squaredDistance(query.data(), &xyz_[3 * static_cast<size_t>(where_[hint])]),
+    result.offer(squaredDistance(query.data(), point(static_cast<uint32_t>(hint)).data()),
                  static_cast<uint32_t>(hint));
   }
   float offset[3];
@@ -186,8 +200,8 @@ float KdTree3::rootGap(const Eigen::Vector3f& query, float* offset) const {
 }
 
 Eigen::Vector3f KdTree3::point(uint32_t i) const {
-  const float* p = &xyz_[3 * static_cast<size_t>(where_[i])];
-  return Eigen::Vector3f(p[0], p[1], p[2]);
+  const uint32_t pos = where_[i];
+  return Eigen::Vector3f(x_[pos], y_[pos], z_[pos]);
 }
 
 }  // namespace tacs
