@@ -132,5 +132,23 @@ TEST(VoxelDownsample, HandlesLargeExtentsWithoutMergingDistantPoints) {
   EXPECT_EQ(out.size(), 3u);
 }
 
+TEST(VoxelDownsample, NearAndFarVoxelsKeepTheOrderOfTheirFirstPoint) {
+  // Near voxels are hashed as packed 64-bit keys, voxels beyond +-2^19 edges as full keys: both
+  // number one sequence of centroids.
+  PointCloud in;
+  in.push_back(point(1.01f, 0.01f, 0.01f, 1));
+  in.push_back(point(3e4f, 0.01f, 0.01f, 2));  // 600k voxels of 5 cm out
+  in.push_back(point(1.02f, 0.02f, 0.02f, 3));
+  in.push_back(point(-2.01f, 0.01f, 0.01f, 4));
+  in.push_back(point(3e4f, 0.02f, 0.02f, 6));
+  const PointCloud out = voxelDownsample(in, 0.05);
+  ASSERT_EQ(out.size(), 3u);
+  EXPECT_NEAR(out.points[0].x, 1.015f, 1e-5);
+  EXPECT_NEAR(out.points[0].intensity, 2.0f, 1e-5);
+  EXPECT_NEAR(out.points[1].x, 3e4f, 1e-2);
+  EXPECT_NEAR(out.points[1].intensity, 4.0f, 1e-5);
+  EXPECT_NEAR(out.points[2].x, -2.01f, 1e-5);
+}
+
 }  // namespace
 }  // namespace tacs

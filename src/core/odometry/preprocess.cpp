@@ -29,14 +29,21 @@ bool isFinitePoint(const pcl::PointXYZI& p) {
 }
 
 // Integer voxel coordinates (and a time slot) to a running centroid, emitted in order of each
-// voxel's first point.
+// voxel's first point. Keys that fit are packed into 64 bits (PackedVoxelIndex: 2.4 -> 1.8 ms at
+// 0.2 m and 4.4 -> 2.4 ms at 0.1 m for a 75k-point scan of the real hall); the others (points
+// beyond +-52 km at 0.1 m) go to the general index. Both number the same cells.
 class VoxelTable {
  public:
-  explicit VoxelTable(size_t expected) : index_(expected) { cells_.reserve(expected); }
+  explicit VoxelTable(size_t expected) : packed_(expected), general_(16) {
+    cells_.reserve(expected);
+  }
 
   void add(const VoxelIndex::Key& key, const pcl::PointXYZI& p, float time) {
-    const size_t i = index_.insert(key);
-    if (i == cells_.size()) cells_.push_back({Eigen::Vector4d::Zero(), 0.0, 0});
+    const uint32_t next = static_cast<uint32_t>(cells_.size());
+    uint64_t packed = 0;
+    const uint32_t i = PackedVoxelKeyTraits::pack(key, &packed) ? packed_.insert(packed, next)
+                                                                : general_.insert(key, next);
+    if (i == next) cells_.push_back({Eigen::Vector4d::Zero(), 0.0, 0});
     Cell& c = cells_[i];
     c.sum += Eigen::Vector4d(p.x, p.y, p.z, p.intensity);
     c.time_sum += time;
@@ -64,7 +71,8 @@ class VoxelTable {
     double time_sum;
     int64_t count;
   };
-  VoxelIndex index_;
+  PackedVoxelIndex packed_;
+  VoxelIndex general_;
   std::vector<Cell> cells_;
 };
 
@@ -75,24 +83,36 @@ constexpr double kTimeSlotsPerSweep = 8.0;
 
 }  // namespace
 
-PointCloud voxelDownsample(const PointCloud& in, double voxel_size, const std::vector<float>* times,
-                           std::vector<float>* times_out) {
+namespace {
+
+// The points of `in` with keep[i] (all finite ones when `keep` is null), voxelised as
+// voxelDownsample() describes. The time slots span the kept points' times.
+PointCloud downsampleKept(const PointCloud& in, const std::vector<uint8_t>* keep, double voxel_size,
+                          const std::vector<float>* times, std::vector<float>* times_out) {
   PointCloud out;
   out.header = in.header;
   const bool timed = times && times_out && times->size() == in.points.size();
   if (times_out) times_out->clear();
+  auto kept = [&](size_t i) { return keep ? (*keep)[i] != 0 : isFinitePoint(in.points[i]); };
   if (voxel_size > 0.0) {
     const double inv = 1.0 / voxel_size;
     double t_lo = 0.0, slot_inv = 0.0;
-    if (timed && !times->empty()) {
-      const auto [lo, hi] = std::minmax_element(times->begin(), times->end());
-      t_lo = *lo;
-      if (*hi > *lo) slot_inv = kTimeSlotsPerSweep / (double(*hi) - double(*lo));
+    if (timed) {
+      std::vector<float> kept_times;
+      kept_times.reserve(in.points.size());
+      for (size_t i = 0; i < in.points.size(); ++i) {
+        if (!keep || (*keep)[i]) kept_times.push_back((*times)[i]);
+      }
+      if (!kept_times.empty()) {
+        const auto [lo, hi] = std::minmax_element(kept_times.begin(), kept_times.end());
+        t_lo = *lo;
+        if (*hi > *lo) slot_inv = kTimeSlotsPerSweep / (double(*hi) - double(*lo));
+      }
     }
     VoxelTable table(in.points.size() / 4);  // grows when more voxels are occupied
     for (size_t i = 0; i < in.points.size(); ++i) {
+      if (!kept(i)) continue;
       const auto& p = in.points[i];
-      if (!isFinitePoint(p)) continue;
       const Eigen::Vector3d scaled = Eigen::Vector3d(p.x, p.y, p.z) * inv;
       if (scaled.cwiseAbs().maxCoeff() > 1e18) continue;  // would overflow a 64-bit index
       const float time = timed ? (*times)[i] : 0.0f;
@@ -106,7 +126,7 @@ PointCloud voxelDownsample(const PointCloud& in, double voxel_size, const std::v
     table.appendCentroids(&out, timed ? times_out : nullptr);
   } else {
     for (size_t i = 0; i < in.points.size(); ++i) {
-      if (!isFinitePoint(in.points[i])) continue;
+      if (!kept(i)) continue;
       out.points.push_back(in.points[i]);
       if (timed) times_out->push_back((*times)[i]);
     }
@@ -117,16 +137,21 @@ PointCloud voxelDownsample(const PointCloud& in, double voxel_size, const std::v
   return out;
 }
 
+}  // namespace
+
+PointCloud voxelDownsample(const PointCloud& in, double voxel_size, const std::vector<float>* times,
+                           std::vector<float>* times_out) {
+  return downsampleKept(in, nullptr, voxel_size, times, times_out);
+}
+
 PointCloud preprocess(const PointCloud& in, const PreprocessConfig& config, PreprocessStats* stats,
                       const std::vector<float>* times, std::vector<float>* times_out) {
   const bool timed = times && times_out && times->size() == in.points.size();
   if (times_out) times_out->clear();
-  std::vector<float> kept_times;
   PreprocessStats s;
   s.input = in.points.size();
-  PointCloud kept;
-  kept.header = in.header;
-  kept.points.reserve(in.points.size());
+  // The kept returns are marked, not copied: the voxel pass reads the scan in place.
+  std::vector<uint8_t> keep(in.points.size(), 0);
   const double min_sq = config.min_range_m * config.min_range_m;
   const double max_sq = config.max_range_m * config.max_range_m;
   for (size_t i = 0; i < in.points.size(); ++i) {
@@ -141,13 +166,11 @@ PointCloud preprocess(const PointCloud& in, const PreprocessConfig& config, Prep
       ++s.out_of_range;
       continue;
     }
-    kept.points.push_back(p);
-    if (timed) kept_times.push_back((*times)[i]);
+    keep[i] = 1;
   }
-  kept.width = static_cast<uint32_t>(kept.points.size());
-  kept.height = 1;
   std::vector<float>* out_times = timed ? times_out : nullptr;
-  PointCloud out = voxelDownsample(kept, config.voxel_size_m, &kept_times, out_times);
+  PointCloud out =
+      downsampleKept(in, &keep, config.voxel_size_m, timed ? times : nullptr, out_times);
   s.voxel_size_m = config.voxel_size_m;
   // Point budget: on surfaces the count falls with the voxel edge squared, so a dense LiDAR's
   // scan is regridded coarser (from the first grid's centroids, which is cheap) until it fits.
