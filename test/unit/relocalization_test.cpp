@@ -202,6 +202,27 @@ TEST(MergeSceneGraphs, ReobservedRoomsAndWallsKeepTheirPriorIds) {
   EXPECT_EQ(merged.keyframes.at(1).room_id, -1);
 }
 
+TEST(OnOnePlane, NormalsOffsetsAndOverlapDecide) {
+  WallNode a;
+  a.normal = Eigen::Vector3d(1, 0, 0);
+  a.d = -2.0;  // x = 2, from y = 0 to 5
+  a.endpoints = {Eigen::Vector2d(2, 0), Eigen::Vector2d(2, 5)};
+  WallNode b = a;
+  b.d = -2.4;  // 0.4 m behind
+  EXPECT_FALSE(onOnePlane(a, b, 10.0, 0.3));
+  EXPECT_TRUE(onOnePlane(a, b, 10.0, 0.5));
+  b = a;
+  b.normal = Eigen::Vector3d(std::cos(0.25), std::sin(0.25), 0.0);  // 14 deg off
+  EXPECT_FALSE(onOnePlane(a, b, 10.0, 0.3));
+  EXPECT_TRUE(onOnePlane(a, b, 20.0, 0.3));
+  b = a;
+  b.endpoints = {Eigen::Vector2d(2, 6), Eigen::Vector2d(2, 9)};  // 1 m past a's end
+  EXPECT_FALSE(onOnePlane(a, b, 20.0, 0.5));
+  b.is_wall = !a.is_wall;
+  b.endpoints = a.endpoints;
+  EXPECT_FALSE(onOnePlane(a, b, 20.0, 0.5));  // a wall and a non-wall plane are never one
+}
+
 class PriorMapFiles : public ::testing::Test {
  protected:
   void SetUp() override {

@@ -104,6 +104,11 @@ class PriorSession {
   double time_ms_ = 0.0;
 };
 
+/// Two walls (or two non-wall planes) on one plane: normals within max_angle_deg, offsets within
+/// max_offset_m, their ends overlapping along the first one (0.5 m of slack). The merge takes a
+/// session wall for a prior one at 10 deg and 0.3 m.
+bool onOnePlane(const WallNode& a, const WallNode& b, double max_angle_deg, double max_offset_m);
+
 /// The session's graph, placed by T_prior_session, merged into the prior's: a session room paired
 /// with a prior room (room_pairs) and a session wall on a prior wall's plane (normals within
 /// 10 deg, offsets within 0.3 m, overlapping ends) keep the prior's id; every other node and the

@@ -38,17 +38,23 @@ std::pair<double, double> spanAlong(const WallNode& w, const Eigen::Vector2d& di
   return {std::min(a, b), std::max(a, b)};
 }
 
-/// A session wall (moved into the prior's frame) on a prior wall's plane: normals within 10 deg,
-/// offsets within 0.3 m, their ends overlapping (0.5 m of slack).
-bool samePlane(const WallNode& prior, const WallNode& session) {
-  if (prior.is_wall != session.is_wall) return false;
-  if (prior.normal.dot(session.normal) < std::cos(10.0 * kPi / 180.0)) return false;
-  if (std::abs(prior.d - session.d) > 0.3) return false;
-  const Eigen::Vector2d direction =
-      Eigen::Vector2d(-prior.normal.y(), prior.normal.x()).normalized();
-  const auto [a0, a1] = spanAlong(prior, direction);
-  const auto [b0, b1] = spanAlong(session, direction);
+}  // namespace
+
+bool onOnePlane(const WallNode& a, const WallNode& b, double max_angle_deg, double max_offset_m) {
+  if (a.is_wall != b.is_wall) return false;
+  if (a.normal.dot(b.normal) < std::cos(max_angle_deg * kPi / 180.0)) return false;
+  if (std::abs(a.d - b.d) > max_offset_m) return false;
+  const Eigen::Vector2d direction = Eigen::Vector2d(-a.normal.y(), a.normal.x()).normalized();
+  const auto [a0, a1] = spanAlong(a, direction);
+  const auto [b0, b1] = spanAlong(b, direction);
   return std::min(a1, b1) - std::max(a0, b0) > -0.5;
+}
+
+namespace {
+
+// A session wall (moved into the prior's frame) on a prior wall's plane.
+bool samePlane(const WallNode& prior, const WallNode& session) {
+  return onOnePlane(prior, session, 10.0, 0.3);
 }
 
 }  // namespace
