@@ -538,9 +538,15 @@ void LidarOdometry::attachKeyframeCloud(const PointCloud& scan, const std::vecto
   PreprocessConfig fine = config_.preprocess;
   if (fine_grid) fine.voxel_size_m = config_.keyframe_cloud_voxel_m;
   fine.max_points = 0;  // walls and terrain want the dense cloud: the budget is the odometry's
+  // Voxelised first, deskewed after (as the registered cloud): a dense scan's 65k returns cost
+  // their few thousand voxels' transforms, each centroid moved with its returns' mean time.
+  const bool timed = offsets && offsets->size() == scan.size();
+  std::vector<float> times;
+  const PointCloud reduced =
+      preprocess(scan, fine, nullptr, timed ? offsets : nullptr, timed ? &times : nullptr);
   bool deskewed = false;
   result->keyframe_cloud.reset(
-      new PointCloud(preprocess(compensate(scan, offsets, velocity, &deskewed), fine)));
+      new PointCloud(compensate(reduced, timed ? &times : nullptr, velocity, &deskewed)));
 }
 
 }  // namespace tacs
