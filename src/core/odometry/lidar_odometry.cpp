@@ -476,15 +476,17 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
   updateMotionModel(t, guess, reg.T_target_source, reset);
   updateRecentFit(result.fit);
   last_scan_stamp_ = stamp;
-  // Back from the sweep's middle to the stamp with the step's velocity.
-  stamp_pose_ = last_pose_ * motionOver(velocity_, -ref_s);
+  // Back from the sweep's middle to the stamp with the motion the registered cloud was deskewed
+  // with: the pose at the stamp and the keyframe cloud deskewed to it then place every return
+  // where the registration did.
+  stamp_pose_ = last_pose_ * motionOver(sweep_velocity, -ref_s);
   result.T_odom_base = stamp_pose_;
   if (isKeyframe(last_pose_)) {
     addKeyframe(&result, scan_gicp, cloud);
-    // The dense keyframe cloud is deskewed to the stamp (with the step's velocity) when the scan
-    // was registered at its sweep's middle, else as the registered cloud was.
+    // The dense keyframe cloud is deskewed to the stamp when the scan was registered at its
+    // sweep's middle, else as the registered cloud was.
     if (ref_s != 0.0) {
-      attachKeyframeCloud(scan, point_offsets_s, velocity_, true, &result);
+      attachKeyframeCloud(scan, point_offsets_s, sweep_velocity, true, &result);
     } else {
       attachKeyframeCloud(scan, result.deskewed ? offsets : nullptr, sweep_velocity, false,
                           &result);
