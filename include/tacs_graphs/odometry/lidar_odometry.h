@@ -202,6 +202,10 @@ class LidarOdometry {
   void startOn(double stamp, const PointCloud::Ptr& cloud, const GicpCloud::ConstPtr& scan_gicp,
                OdometryResult* result);
   Pose3 predict(double stamp, bool* reset) const;
+  /// True when the scan is to be deskewed: deskew on and one time per point.
+  bool usableTimes(const PointCloud& scan, const std::vector<float>* offsets) const {
+    return config_.deskew && offsets && offsets->size() == scan.size();
+  }
   /// The scan deskewed with `velocity` when it has point times, else the scan itself.
   PointCloud compensate(const PointCloud& scan, const std::vector<float>* offsets,
                         const BodyVelocity& velocity, bool* deskewed) const;

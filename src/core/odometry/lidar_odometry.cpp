@@ -164,7 +164,7 @@ void LidarOdometry::rebuildLocalMap() {
 
 PointCloud LidarOdometry::compensate(const PointCloud& scan, const std::vector<float>* offsets,
                                      const BodyVelocity& velocity, bool* deskewed) const {
-  *deskewed = config_.deskew && offsets && offsets->size() == scan.size();
+  *deskewed = usableTimes(scan, offsets);
   if (!*deskewed) return scan;
   return tacs::deskew(scan, *offsets, velocity);
 }
@@ -439,7 +439,7 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
   if (!reset) velocity = velocity_;
   // Preprocessed first, deskewed after: each voxel centroid keeps its returns' mean time, so a
   // dense scan is deskewed (twice with deskew_refine) at the cost of its voxels, not its returns.
-  const bool has_times = config_.deskew && offsets && offsets->size() == scan.size();
+  const bool has_times = usableTimes(scan, offsets);
   std::vector<float> times;
   const PointCloud reduced = preprocess(scan, config_.preprocess, &result.preprocess,
                                         has_times ? offsets : nullptr, &times);
@@ -542,7 +542,7 @@ void LidarOdometry::attachKeyframeCloud(const PointCloud& scan, const std::vecto
   fine.max_points = 0;  // walls and terrain want the dense cloud: the budget is the odometry's
   // Voxelised first, deskewed after (as the registered cloud): a dense scan's 65k returns cost
   // their few thousand voxels' transforms, each centroid moved with its returns' mean time.
-  const bool timed = offsets && offsets->size() == scan.size();
+  const bool timed = usableTimes(scan, offsets);
   std::vector<float> times;
   const PointCloud reduced =
       preprocess(scan, fine, nullptr, timed ? offsets : nullptr, timed ? &times : nullptr);
