@@ -68,9 +68,9 @@ TEST(MapExport, OctomapMarksTheWallOccupiedAndTheWayFree) {
   std::remove(path.c_str());
 }
 
-TEST(MapExport, OctomapMatchesOctomapsOwnInsertionWithARayToEveryPoint) {
-  // Three keyframes seeing a room's corner from places 0.7 m apart, one wall beyond the range: the
-  // leaves accumulated apart and set once must give OctoMap's insertPointCloud, leaf for leaf.
+// Three keyframes seeing a room's corner from places 0.7 m apart, one wall 20 m away: the leaves
+// accumulated apart and set once must give OctoMap's insertPointCloud, leaf for leaf.
+void expectOctomapsOwnInsertion(double max_range_m) {
   SceneGraph graph;
   KeyframeClouds clouds;
   auto room = std::make_shared<PointCloud>(*wallPatch());
@@ -78,7 +78,7 @@ TEST(MapExport, OctomapMatchesOctomapsOwnInsertionWithARayToEveryPoint) {
     pcl::PointXYZI p;
     p.x = static_cast<float>(x), p.y = 1.5f, p.z = 0.5f;
     room->push_back(p);
-    p.y = 20.0f;  // beyond octomap_max_range_m: free space only, up to the range
+    p.y = 20.0f;  // beyond a 15 m range: free space only, up to the range
     room->push_back(p);
   }
   for (uint32_t id = 0; id < 3; ++id) {
@@ -88,6 +88,7 @@ TEST(MapExport, OctomapMatchesOctomapsOwnInsertionWithARayToEveryPoint) {
   }
   MapExportConfig config;
   config.octomap_ray_voxel_m = 0.0;
+  config.octomap_max_range_m = max_range_m;
   const std::string path = ::testing::TempDir() + "/map_export_equal.bt";
   writeOctomap(path, graph, clouds, config);
   const octomap::OcTree ours(path);
@@ -119,6 +120,16 @@ TEST(MapExport, OctomapMatchesOctomapsOwnInsertionWithARayToEveryPoint) {
   expected.prune();
   EXPECT_EQ(ours.size(), expected.size());
   std::remove(path.c_str());
+}
+
+TEST(MapExport, OctomapMatchesOctomapsOwnInsertionWithARayToEveryPoint) {
+  expectOctomapsOwnInsertion(15.0);
+}
+
+TEST(MapExport, OctomapMatchesOctomapsOwnInsertionWithRaysTooLongForTheKeyframeCube) {
+  // 60 m rays of 0.1 m leaves: the cube of leaves a keyframe can reach would take 120 MB of bits,
+  // so the leaves are marked in the map-wide directory instead.
+  expectOctomapsOwnInsertion(60.0);
 }
 
 TEST(MapExport, PcdRoundTripAndEmptyMap) {
