@@ -147,6 +147,7 @@ void BackendNode::keyframeCallback(const tacs_graphs::Keyframe::ConstPtr& msg) {
   }
   journal_->record(kKeyframeChannel, *msg);
   session_->noteScanInput({msg->scans_received, msg->scans_missing});
+  session_->noteSensorInBase(kf.sensor_in_base);
   latest_stamp_ = std::max(latest_stamp_, kf.stamp);
   map_dirty_ = true;
   changed_ = true;

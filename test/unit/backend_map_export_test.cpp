@@ -132,6 +132,50 @@ TEST(MapExport, OctomapMatchesOctomapsOwnInsertionWithRaysTooLongForTheKeyframeC
   expectOctomapsOwnInsertion(60.0);
 }
 
+// The share of the floor's leaves (z = 0, 1-4 m around the robot) that map.bt holds occupied when
+// the rays start at `sensor_in_base`: one keyframe sees the floor, three more at the same place
+// (the robot standing) see the foot of a wall ring 6 m away.
+double occupiedFloorShare(const Eigen::Vector3d& sensor_in_base) {
+  auto floor = std::make_shared<PointCloud>(), ring = std::make_shared<PointCloud>();
+  pcl::PointXYZI p;
+  p.z = 0.02f;
+  for (double x = -4; x <= 4; x += 0.05) {
+    for (double y = -4; y <= 4; y += 0.05) {
+      const double r = std::hypot(x, y);
+      if (r < 1.0 || r > 4.0) continue;
+      p.x = static_cast<float>(x), p.y = static_cast<float>(y);
+      floor->push_back(p);
+    }
+  }
+  for (double a = 0; a < 2 * M_PI; a += 0.002) {
+    p.x = static_cast<float>(6.0 * std::cos(a)), p.y = static_cast<float>(6.0 * std::sin(a));
+    ring->push_back(p);
+  }
+  SceneGraph graph;
+  KeyframeClouds clouds;
+  for (uint32_t id = 0; id < 4; ++id) {
+    graph.keyframes[id].id = id;
+    clouds[id] = id == 0 ? floor : ring;
+  }
+  const std::string path = ::testing::TempDir() + "/map_export_floor.bt";
+  writeOctomap(path, graph, clouds, MapExportConfig(), sensor_in_base);
+  const octomap::OcTree tree(path);
+  std::remove(path.c_str());
+  int occupied = 0;
+  for (const auto& q : *floor) {
+    const octomap::OcTreeNode* node = tree.search(q.x, q.y, q.z);
+    occupied += node && tree.isNodeOccupied(node);
+  }
+  return static_cast<double>(occupied) / static_cast<double>(floor->size());
+}
+
+TEST(MapExport, OctomapRaysStartAtTheSensorNotTheBase) {
+  // A base on the floor and its LiDAR 0.5 m above: rays from the base would run along the floor's
+  // leaves to the wall's foot and clear them.
+  EXPECT_GT(occupiedFloorShare(Eigen::Vector3d(0, 0, 0.5)), 0.99);
+  EXPECT_LT(occupiedFloorShare(Eigen::Vector3d::Zero()), 0.2);
+}
+
 TEST(MapExport, PcdRoundTripAndEmptyMap) {
   const std::string path = ::testing::TempDir() + "/map_export_test.pcd";
   writePcdAtomically(path, *wallPatch());

@@ -54,10 +54,12 @@ class MapClouds {
 /// All keyframe clouds moved into the map frame with the scene graph's poses, voxel-downsampled.
 PointCloud buildMapCloud(const SceneGraph& graph, const KeyframeClouds& clouds, double voxel_m);
 
-/// Builds an OctoMap by ray casting every keyframe cloud from its sensor origin and writes it as a
-/// binary .bt file through a temporary file (never half-written). Throws std::runtime_error.
+/// Builds an OctoMap by ray casting every keyframe cloud (base frame) from its sensor origin,
+/// `sensor_in_base` in the base frame, and writes it as a binary .bt file through a temporary
+/// file (never half-written). Throws std::runtime_error.
 void writeOctomap(const std::string& path, const SceneGraph& graph, const KeyframeClouds& clouds,
-                  const MapExportConfig& config);
+                  const MapExportConfig& config,
+                  const Eigen::Vector3d& sensor_in_base = Eigen::Vector3d::Zero());
 
 /// Writes a .pcd (binary) through a temporary file. Throws std::runtime_error.
 void writePcdAtomically(const std::string& path, const PointCloud& cloud);

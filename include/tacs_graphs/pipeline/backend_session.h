@@ -71,6 +71,9 @@ class BackendSession {
 
   std::optional<OptimizationReport> optimizeIfDue() { return backend_.optimizeIfDue(); }
   OptimizationReport optimize() { return backend_.optimize(); }
+  /// The sensor's position in the base frame (the keyframes' sensor_origin): map.bt's rays
+  /// start there. Until a keyframe says otherwise, frames.base_to_sensor.
+  void noteSensorInBase(const Eigen::Vector3d& sensor_in_base) { sensor_in_base_ = sensor_in_base; }
 
   /// The optimised scene graph with the room nodes, the keyframes' room ids and the scan input.
   /// With the paper's rooms (rooms.method tacs), a plane that bounds no room because it is
@@ -123,6 +126,7 @@ class BackendSession {
   Backend backend_;
   std::optional<ScanInput> scan_input_;
   MapClouds clouds_;
+  Eigen::Vector3d sensor_in_base_;  // map.bt's ray origin (noteSensorInBase)
   PointCloud::Ptr recovered_map_;
   std::map<uint32_t, KeyframeWalls> pending_walls_;
   std::vector<std::pair<LoopEdge, Matrix6d>> pending_loops_;

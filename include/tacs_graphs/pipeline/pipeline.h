@@ -95,6 +95,8 @@ class Pipeline {
   SceneGraph sceneGraph() const { return backend_.sceneGraph(); }
   const Backend& backend() const { return backend_.backend(); }
   const KeyframeClouds& keyframeClouds() const { return backend_.keyframeClouds(); }
+  /// The sensor's position in the base frame: where the keyframe clouds' rays start.
+  const Eigen::Vector3d& sensorInBase() const { return sensor_in_base_; }
   const StageTimes& stageTimes() const { return stage_times_; }
   /// Total backend optimisation time (t_FGO) and loop-detection time (t_LD) in seconds.
   double fgoSeconds() const { return backend().totalOptimizationMs() / 1e3; }

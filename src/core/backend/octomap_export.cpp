@@ -23,7 +23,13 @@ namespace tacs {
 
 namespace {
 
-using Keyframes = std::vector<std::pair<const PointCloud*, Pose3>>;
+// A keyframe cloud (base frame), its pose and its rays' origin (the sensor), both in the map.
+struct KeyframeView {
+  const PointCloud* cloud;
+  Pose3 pose;
+  Eigen::Vector3d origin;
+};
+using Keyframes = std::vector<KeyframeView>;
 
 uint64_t packKey(const octomap::OcTreeKey& k) {
   return (static_cast<uint64_t>(k[0]) << 32) | (static_cast<uint64_t>(k[1]) << 16) | k[2];
@@ -89,10 +95,10 @@ std::pair<octomap::OcTreeKey, octomap::OcTreeKey> reach(const octomap::OcTree& t
                                                         double max_range_m) {
   octomap::OcTreeKey lo(0, 0, 0), hi(0, 0, 0);
   if (keyframes.empty()) return {lo, hi};
-  Eigen::Vector3d min = keyframes.front().second.translation(), max = min;
+  Eigen::Vector3d min = keyframes.front().origin, max = min;
   for (const auto& keyframe : keyframes) {
-    min = min.cwiseMin(keyframe.second.translation());
-    max = max.cwiseMax(keyframe.second.translation());
+    min = min.cwiseMin(keyframe.origin);
+    max = max.cwiseMax(keyframe.origin);
   }
   const double margin = max_range_m + 2.0 * tree.getResolution();
   for (int a = 0; a < 3; ++a) {
@@ -239,15 +245,15 @@ struct KeyframeRays {
 // clipped at the range). It reads only the tree's geometry, so keyframes are cast side by side.
 // `rays` is refilled, its lists keeping their capacity: a fresh list per keyframe cost as much
 // in the kernel (page faults of the allocations) as in its own growth.
-void castRays(const octomap::OcTree& tree, const PointCloud& cloud, const Pose3& pose,
+void castRays(const octomap::OcTree& tree, const KeyframeView& keyframe,
               const MapExportConfig& config, VisitedLeaves* visited, KeyframeRays* out) {
   KeyframeRays& rays = *out;
   for (auto* lists : {&rays.hits, &rays.crossed}) {
     for (auto& list : *lists) list.clear();
   }
   PointCloud moved;
-  pcl::transformPointCloud(cloud, moved, pose.matrix().cast<float>());
-  const Eigen::Vector3d o = pose.translation();
+  pcl::transformPointCloud(*keyframe.cloud, moved, keyframe.pose.matrix().cast<float>());
+  const Eigen::Vector3d& o = keyframe.origin;
   const octomap::point3d origin(o.x(), o.y(), o.z());
   const double max_range = config.octomap_max_range_m;
   std::vector<octomap::OcTreeKey> ends;
@@ -360,15 +366,16 @@ void writeInto(const BrickDirectory<LeafBrick>& leaves, octomap::OcTree* tree) {
 // leaves (walkRay) and setting the leaves at their maximum-likelihood values (writeInto) took the
 // real hall's map.bt from 3.6 to 2.8-3.1 s, every leaf's occupancy unchanged.
 void writeOctomap(const std::string& path, const SceneGraph& graph, const KeyframeClouds& clouds,
-                  const MapExportConfig& config) {
+                  const MapExportConfig& config, const Eigen::Vector3d& sensor_in_base) {
   octomap::OcTree tree(config.octomap_resolution_m);
   const float hit = tree.getProbHitLog(), miss = tree.getProbMissLog();
   const float lo = tree.getClampingThresMinLog(), hi = tree.getClampingThresMaxLog();
   Keyframes keyframes;
   for (const auto& [id, cloud] : clouds) {
     const auto it = graph.keyframes.find(id);
-    if (it != graph.keyframes.end() && cloud)
-      keyframes.emplace_back(cloud.get(), it->second.pose());
+    if (it == graph.keyframes.end() || !cloud) continue;
+    const Pose3 pose = it->second.pose();
+    keyframes.push_back({cloud.get(), pose, pose * sensor_in_base});
   }
   const auto [key_lo, key_hi] = reach(tree, keyframes, config.octomap_max_range_m);
   // Leaves are independent of each other, and a leaf's updates must follow the keyframe order
@@ -399,8 +406,7 @@ void writeOctomap(const std::string& path, const SceneGraph& graph, const Keyfra
       const int thread = omp_get_thread_num(), threads = omp_get_num_threads();
 #pragma omp for schedule(dynamic, 1)
       for (int i = 0; i < count; ++i) {
-        const auto& [cloud, pose] = keyframes[first + i];
-        castRays(tree, *cloud, pose, config, &visited[thread], &batch[i]);
+        castRays(tree, keyframes[first + i], config, &visited[thread], &batch[i]);
       }  // implicit barrier: the batch is cast
       for (int part = thread; part < kParts; part += threads) {
         for (int i = 0; i < count; ++i) {

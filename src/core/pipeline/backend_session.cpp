@@ -108,7 +108,8 @@ BackendSession::BackendSession(const PipelineConfig& config, const BackendSessio
     : config_(config),
       options_(options),
       backend_(config.backend, config.walls.association),
-      clouds_(config.map_export.cloud_retention) {}
+      clouds_(config.map_export.cloud_retention),
+      sensor_in_base_(config.frames.baseToSensor().translation()) {}
 
 BackendSession::Outcome BackendSession::addKeyframe(uint32_t id, double stamp,
                                                     const Pose3& T_odom_base,
@@ -342,7 +343,7 @@ void BackendSession::save(const std::string& dir, const MapExportConfig& map_con
   writeTum(dir + "/trajectory_tum.txt", keyframes);
   writeFileAtomically(dir + "/backend_journal.json", journalText());
   writePcdAtomically(dir + "/map.pcd", mapCloud(map_config.cloud_voxel_m));
-  writeOctomap(dir + "/map.bt", graph, clouds_.clouds(), map_config);
+  writeOctomap(dir + "/map.bt", graph, clouds_.clouds(), map_config, sensor_in_base_);
   writeFileAtomically(dir + "/run.json", runStatus("complete").dump(2) + "\n");
 }
 

@@ -94,7 +94,8 @@ std::map<std::string, double> writeRunFolder(const std::string& dir, const Pipel
   }
   writePcdAtomically(dir + "/map.pcd", map);
   lap("map.pcd");
-  writeOctomap(dir + "/map.bt", session, pipeline.keyframeClouds(), map_config);
+  writeOctomap(dir + "/map.bt", session, pipeline.keyframeClouds(), map_config,
+               pipeline.sensorInBase());
   lap("map.bt");
   writeTopdown(dir + "/topdown.png", graph, map, map_config.topdown_resolution_m);
   lap("topdown.png");
