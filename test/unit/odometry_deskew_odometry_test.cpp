@@ -127,9 +127,9 @@ TEST(DeskewedOdometry, FollowsFastTurnsFromThePointTimes) {
   EXPECT_LT(deskewed.rms_m, 0.5 * raw.rms_m);
   // The keyframe clouds handed on are deskewed to the stamp as well.
   EXPECT_LT(deskewed.keyframe_wall_rms_m, 0.5 * raw.keyframe_wall_rms_m);
-  // ... with the velocity the registered cloud was deskewed with (11.9 mm; the step's velocity
-  // gave 15.5 mm, an undistorted sweep 7.0 mm).
-  EXPECT_LT(deskewed.keyframe_wall_rms_m, 0.014);
+  // ... with the step's velocity: 15.5 mm (11.9 with the velocity the registered cloud was
+  // deskewed with, which put the worlds' stamp poses farther off; an undistorted sweep 7.0 mm).
+  EXPECT_LT(deskewed.keyframe_wall_rms_m, 0.018);
   std::printf(
       "[          ] deskewed: rms %.4f m, max %.2f deg, keyframe walls %.4f m; raw: rms %.4f m, "
       "max %.2f deg, keyframe walls %.4f m\n",
