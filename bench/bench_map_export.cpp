@@ -5,8 +5,11 @@
 // their ground-truth poses. Prints one table row per world: keyframes, their points, the minimum
 // and mean time over --reps writes, and the file's size.
 //   bench_map_export [--world NAME|FILE ...] [--every N] [--reps N] [--config YAML]
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -71,7 +74,7 @@ int main(int argc, char** argv) {
     double min_s = 1e30, sum_s = 0.0;
     for (int r = 0; r < reps; ++r) {
       tacs::Stopwatch watch;
-      tacs::writeOctomap(out, graph, clouds, args.config.map_export);
+      tacs::writeOctomap(out, graph, clouds, args.config.map_export, T_base_sensor.translation());
       const double s = watch.elapsedMs() / 1000.0;
       min_s = std::min(min_s, s);
       sum_s += s;

@@ -120,7 +120,7 @@ std::pair<octomap::OcTreeKey, octomap::OcTreeKey> reach(const octomap::OcTree& t
 class VisitedLeaves {
  public:
   VisitedLeaves(const octomap::OcTreeKey& lo, const octomap::OcTreeKey& hi, int reach_leaves)
-      : far_(lo, hi), reach_(reach_leaves + 8) {
+      : lo_(lo), hi_(hi), reach_(reach_leaves + 8) {
     side_ = (2 * reach_ >> 3) + 2;
     const uint64_t bricks = static_cast<uint64_t>(side_) * side_ * side_;
     if (bricks > kMaxCube) {
@@ -140,9 +140,8 @@ class VisitedLeaves {
     last_ = nullptr;
     ++epoch_;
   }
-  /// True the first time the current keyframe visits k. Inlined: it runs at every step of
-  /// every ray.
-  [[gnu::always_inline]] bool visit(const octomap::OcTreeKey& k) {
+  /// True the first time the current keyframe visits k.
+  bool visit(const octomap::OcTreeKey& k) {
     const int bx = (k[0] >> 3) - corner_[0], by = (k[1] >> 3) - corner_[1],
               bz = (k[2] >> 3) - corner_[2];
     Bits* bits;
@@ -157,7 +156,9 @@ class VisitedLeaves {
         last_ = bits;
       }
     } else {
-      FarBits& f = far_.at(k);
+      // Made on first use: with the default range every leaf is in the cube.
+      if (!far_) far_ = std::make_unique<BrickDirectory<FarBits>>(lo_, hi_);
+      FarBits& f = far_->at(k);
       if (f.epoch != epoch_) f = FarBits{{}, epoch_};
       bits = &f.bits;
     }
@@ -177,7 +178,8 @@ class VisitedLeaves {
     Bits bits;
     int epoch = -1;
   };
-  BrickDirectory<FarBits> far_;
+  octomap::OcTreeKey lo_, hi_;  // the map's reach, for far_
+  std::unique_ptr<BrickDirectory<FarBits>> far_;
   std::vector<Bits> near_;
   std::vector<uint8_t> used_;
   std::vector<uint32_t> touched_;
@@ -214,18 +216,14 @@ bool walkRay(const octomap::OcTree& tree, const octomap::point3d& origin,
       t_max[i] = t_delta[i] = std::numeric_limits<double>::max();
     }
   }
-  const auto nearest = [&t_max] {
-    return t_max[0] < t_max[1] ? (t_max[0] < t_max[2] ? 0 : 2) : (t_max[1] < t_max[2] ? 1 : 2);
-  };
-  int dim = nearest();
   while (true) {
+    const int dim =
+        t_max[0] < t_max[1] ? (t_max[0] < t_max[2] ? 0 : 2) : (t_max[1] < t_max[2] ? 1 : 2);
     key[dim] = static_cast<octomap::key_type>(key[dim] + step[dim]);
     t_max[dim] += t_delta[dim];
     if (key == key_end) return true;
-    // The next crossing, whose distance is the smallest t_max. Rounding can step past the end's
-    // leaf: stop once the ray is longer than the segment.
-    dim = nearest();
-    if (t_max[dim] > length) return true;
+    // Rounding can step past the end's leaf: stop once the ray is longer than the segment.
+    if (std::min(std::min(t_max[0], t_max[1]), t_max[2]) > length) return true;
     visit(key);
   }
 }
