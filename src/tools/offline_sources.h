@@ -1,5 +1,5 @@
 // The scan sources of tacs_offline (a bag, or a world simulated in-process) and the thread that
-// runs the odometry a few scans ahead of the keyframe stages (OdometryAhead).
+// reads it and runs the odometry a few scans ahead of the keyframe stages (OdometryAhead).
 #pragma once
 
 #include <pcl/common/transforms.h>
@@ -32,8 +32,8 @@ struct SensorScan {
   tacs::PointTimes times;  // per-point times relative to `stamp` (times.ok: usable)
 };
 
-/// next() and baseToSensor() run on OdometryAhead's thread; size() (fixed at opening) and the
-/// ground truth are read by the caller.
+/// next() and baseToSensor() run on OdometryAhead's reading thread; size() (fixed at opening) and
+/// the ground truth are read by the caller.
 class ScanSource {
  public:
   virtual ~ScanSource() = default;
@@ -145,53 +145,85 @@ struct ScanItem {
   tacs::ScanOdometry odometry;
 };
 
-/// Reads the source and runs the odometry (Pipeline::odometryOf) on a thread of its own, up to
-/// kDepth scans ahead of the caller, who takes each scan's odometry on in order
+/// Reads the source on a thread of its own (decompression, conversion, the move into the base
+/// frame), up to kReadDepth scans ahead, and runs the odometry (Pipeline::odometryOf) on
+/// another, up to kDepth scans ahead of the caller, who takes each scan's odometry on in order
 /// (Pipeline::takeOdometry): the keyframe stages of one scan overlap the odometry of the next
-/// ones, and every result is what the sequential loop gives. The pipeline is made by
-/// `make_pipeline(T_base_sensor)` on that thread at the first usable scan, when the sensor's
-/// extrinsic is known.
+/// ones, whose reading overlaps both, and every result is what the sequential loop gives. The
+/// pipeline is made by `make_pipeline(T_base_sensor)` on the odometry thread at the first usable
+/// scan, when the sensor's extrinsic is known.
 class OdometryAhead {
  public:
   static constexpr size_t kDepth = 8;
+  static constexpr size_t kReadDepth = 3;
 
   OdometryAhead(ScanSource& source,
                 std::function<tacs::Pipeline*(const tacs::Pose3&)> make_pipeline)
-      : source_(source), make_pipeline_(std::move(make_pipeline)), thread_([this] { run(); }) {}
+      : source_(source),
+        make_pipeline_(std::move(make_pipeline)),
+        reader_([this] { read(); }),
+        thread_([this] { run(); }) {}
   ~OdometryAhead() { stop(); }
 
-  /// The next message's item, or nullopt at the end (or once the thread failed: finish()).
+  /// The next message's item, or nullopt at the end (or once a thread failed: finish()).
   std::optional<ScanItem> next() { return queue_.pop(); }
 
-  /// Waits for the thread and rethrows what stopped it early, if anything did.
+  /// Waits for the threads and rethrows what stopped them early, if anything did.
   void finish() {
     stop();
     if (failure_) std::rethrow_exception(failure_);
   }
 
  private:
+  // A scan as read, its cloud moved into the base frame when it is usable.
+  struct ReadScan {
+    SensorScan scan;
+    std::optional<tacs::Pose3> T_base_sensor;  // on the first usable scan
+  };
+
   void stop() {
     queue_.close();
+    read_queue_.close();
     if (thread_.joinable()) thread_.join();
+    if (reader_.joinable()) reader_.join();
+  }
+
+  // The source is read on this thread only (next() and baseToSensor() alike).
+  void read() {
+    try {
+      std::optional<Eigen::Affine3f> base_to_sensor;
+      for (;;) {
+        ReadScan item;
+        if (!source_.next(&item.scan)) break;
+        if (item.scan.error.empty()) {
+          if (!base_to_sensor) {
+            item.T_base_sensor = source_.baseToSensor(item.scan.frame_id);
+            base_to_sensor = item.T_base_sensor->cast<float>();
+          }
+          tacs::PointCloud in_base;
+          pcl::transformPointCloud(item.scan.cloud, in_base, *base_to_sensor);
+          item.scan.cloud = std::move(in_base);
+        }
+        if (!read_queue_.push(std::move(item))) return;  // the odometry thread stopped
+      }
+    } catch (...) {
+      read_failure_ = std::current_exception();
+    }
+    read_queue_.close();
   }
 
   void run() {
     try {
-      SensorScan scan;
       tacs::Pipeline* pipeline = nullptr;
-      Eigen::Affine3f base_to_sensor = Eigen::Affine3f::Identity();
-      for (size_t k = 1; source_.next(&scan); ++k) {
+      for (size_t k = 1;; ++k) {
+        std::optional<ReadScan> read = read_queue_.pop();
+        if (!read) break;
+        SensorScan& scan = read->scan;
         ScanItem item;
         item.k = k;
         item.error = scan.error;
         if (item.error.empty()) {
-          if (!pipeline) {
-            const tacs::Pose3 T_base_sensor = source_.baseToSensor(scan.frame_id);
-            base_to_sensor = T_base_sensor.cast<float>();
-            pipeline = make_pipeline_(T_base_sensor);
-          }
-          tacs::PointCloud in_base;
-          pcl::transformPointCloud(scan.cloud, in_base, base_to_sensor);
+          if (!pipeline) pipeline = make_pipeline_(*read->T_base_sensor);
           const tacs::PointTimes& times = scan.times;
           if (!times.ok && !times.reason.empty() && times.reason != "disabled") {
             item.no_deskew = times.reason;
@@ -199,10 +231,13 @@ class OdometryAhead {
           }
           item.stamp = scan.stamp;
           item.odometry =
-              pipeline->odometryOf(scan.stamp, in_base, times.ok ? &times.offset_s : nullptr);
+              pipeline->odometryOf(scan.stamp, scan.cloud, times.ok ? &times.offset_s : nullptr);
         }
-        if (!queue_.push(std::move(item))) return;  // the caller stopped taking scans
+        if (!queue_.push(std::move(item))) break;  // the caller stopped taking scans
       }
+      read_queue_.close();  // the reader may wait on a full queue
+      if (reader_.joinable()) reader_.join();
+      if (read_failure_) failure_ = read_failure_;
     } catch (...) {
       failure_ = std::current_exception();
     }
@@ -211,9 +246,11 @@ class OdometryAhead {
 
   ScanSource& source_;
   std::function<tacs::Pipeline*(const tacs::Pose3&)> make_pipeline_;
+  tacs::BoundedQueue<ReadScan> read_queue_{kReadDepth};
   tacs::BoundedQueue<ScanItem> queue_{kDepth};
-  std::exception_ptr failure_;
-  std::thread thread_;  // last: started once everything it uses is built
+  std::exception_ptr read_failure_, failure_;
+  std::thread reader_;  // last: started once everything they use is built
+  std::thread thread_;
 };
 
 }  // namespace tacs::tools
