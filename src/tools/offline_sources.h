@@ -146,12 +146,12 @@ struct ScanItem {
 };
 
 /// Reads the source on a thread of its own (decompression, conversion, the move into the base
-/// frame), up to kReadDepth scans ahead, and runs the odometry (Pipeline::odometryOf) on
-/// another, up to kDepth scans ahead of the caller, who takes each scan's odometry on in order
-/// (Pipeline::takeOdometry): the keyframe stages of one scan overlap the odometry of the next
-/// ones, whose reading overlaps both, and every result is what the sequential loop gives. The
-/// pipeline is made by `make_pipeline(T_base_sensor)` on the odometry thread at the first usable
-/// scan, when the sensor's extrinsic is known.
+/// frame, the odometry's preparation: Pipeline::prepareScan), up to kReadDepth scans ahead, and
+/// runs the odometry (Pipeline::odometryOf) on another, up to kDepth scans ahead of the caller,
+/// who takes each scan's odometry on in order (Pipeline::takeOdometry): the keyframe stages of
+/// one scan overlap the odometry of the next ones, whose reading overlaps both, and every result
+/// is what the sequential loop gives. The pipeline is made by `make_pipeline(T_base_sensor)` on
+/// the reading thread at the first usable scan, when the sensor's extrinsic is known.
 class OdometryAhead {
  public:
   static constexpr size_t kDepth = 8;
@@ -175,10 +175,13 @@ class OdometryAhead {
   }
 
  private:
-  // A scan as read, its cloud moved into the base frame when it is usable.
+  // A message as read: a scan in the base frame prepared for the odometry
+  // (Pipeline::prepareScan), or why it is no usable scan.
   struct ReadScan {
-    SensorScan scan;
-    std::optional<tacs::Pose3> T_base_sensor;  // on the first usable scan
+    std::string error;
+    std::string no_deskew, no_deskew_message;  // the scan's times were unusable
+    tacs::Pipeline* pipeline = nullptr;        // made on the first usable scan
+    tacs::PreparedScan prepared;
   };
 
   void stop() {
@@ -188,21 +191,33 @@ class OdometryAhead {
     if (reader_.joinable()) reader_.join();
   }
 
-  // The source is read on this thread only (next() and baseToSensor() alike).
+  // The source is read on this thread only (next() and baseToSensor() alike); the pipeline is
+  // made here, at the first usable scan, when the sensor's extrinsic is known.
   void read() {
     try {
-      std::optional<Eigen::Affine3f> base_to_sensor;
-      for (;;) {
+      tacs::Pipeline* pipeline = nullptr;
+      Eigen::Affine3f base_to_sensor = Eigen::Affine3f::Identity();
+      SensorScan scan;
+      while (source_.next(&scan)) {
         ReadScan item;
-        if (!source_.next(&item.scan)) break;
-        if (item.scan.error.empty()) {
-          if (!base_to_sensor) {
-            item.T_base_sensor = source_.baseToSensor(item.scan.frame_id);
-            base_to_sensor = item.T_base_sensor->cast<float>();
+        item.error = scan.error;
+        if (item.error.empty()) {
+          if (!pipeline) {
+            const tacs::Pose3 T_base_sensor = source_.baseToSensor(scan.frame_id);
+            base_to_sensor = T_base_sensor.cast<float>();
+            pipeline = make_pipeline_(T_base_sensor);
           }
-          tacs::PointCloud in_base;
-          pcl::transformPointCloud(item.scan.cloud, in_base, *base_to_sensor);
-          item.scan.cloud = std::move(in_base);
+          auto in_base = std::make_shared<tacs::PointCloud>();
+          pcl::transformPointCloud(scan.cloud, *in_base, base_to_sensor);
+          tacs::PointTimes& times = scan.times;
+          if (!times.ok && !times.reason.empty() && times.reason != "disabled") {
+            item.no_deskew = times.reason;
+            item.no_deskew_message = times.message;
+          }
+          item.pipeline = pipeline;
+          item.prepared = pipeline->prepareScan(
+              scan.stamp, std::move(in_base),
+              times.ok ? std::make_shared<std::vector<float>>(std::move(times.offset_s)) : nullptr);
         }
         if (!read_queue_.push(std::move(item))) return;  // the odometry thread stopped
       }
@@ -214,24 +229,17 @@ class OdometryAhead {
 
   void run() {
     try {
-      tacs::Pipeline* pipeline = nullptr;
       for (size_t k = 1;; ++k) {
         std::optional<ReadScan> read = read_queue_.pop();
         if (!read) break;
-        SensorScan& scan = read->scan;
         ScanItem item;
         item.k = k;
-        item.error = scan.error;
+        item.error = read->error;
         if (item.error.empty()) {
-          if (!pipeline) pipeline = make_pipeline_(*read->T_base_sensor);
-          const tacs::PointTimes& times = scan.times;
-          if (!times.ok && !times.reason.empty() && times.reason != "disabled") {
-            item.no_deskew = times.reason;
-            item.no_deskew_message = times.message;
-          }
-          item.stamp = scan.stamp;
-          item.odometry =
-              pipeline->odometryOf(scan.stamp, scan.cloud, times.ok ? &times.offset_s : nullptr);
+          item.no_deskew = read->no_deskew;
+          item.no_deskew_message = read->no_deskew_message;
+          item.stamp = read->prepared.stamp;
+          item.odometry = read->pipeline->odometryOf(read->prepared);
         }
         if (!queue_.push(std::move(item))) break;  // the caller stopped taking scans
       }

@@ -213,8 +213,9 @@ int run(const Options& o) {
                                                         loaded.config.odometry.point_times);
   }
   // The odometry runs on a thread of its own, a few scans ahead of the keyframe stages here
-  // (Pipeline::odometryOf); the pipeline is built there at the first usable scan, when the
-  // sensor extrinsic is known, and read here only after that scan came through the queue.
+  // (Pipeline::odometryOf), and the source is read on a third (OdometryAhead); the pipeline is
+  // built there at the first usable scan, when the sensor extrinsic is known, and read here only
+  // after that scan came through the queues.
   std::unique_ptr<tacs::Pipeline> pipeline_ptr;
   tacs::tools::OdometryAhead ahead(*source, [&](const tacs::Pose3& T_base_sensor) {
     pipeline_ptr = std::make_unique<tacs::Pipeline>(loaded.config, T_base_sensor);

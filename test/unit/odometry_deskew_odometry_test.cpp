@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
+#include <memory>
 #include <vector>
 
 #include "tacs_graphs/odometry/lidar_odometry.h"
@@ -154,6 +156,50 @@ TEST(DeskewedOdometry, RegisteringAtTheSweepsMiddleBeatsRegisteringAtItsStamp) {
       "%.2f deg, step %.4f m %.3f deg\n",
       middle.rms_m, middle.max_deg, middle.step_m, middle.step_deg, stamp.rms_m, stamp.max_deg,
       stamp.step_m, stamp.step_deg);
+}
+
+TEST(DeskewedOdometry, ScansPreparedAheadOnAnotherThreadGiveTheSameResults) {
+  // prepare() reads only the configuration: every scan prepared at once on another thread before
+  // the first is registered gives what process() gives scan by scan.
+  const sim::World world = fastTurnsWorld();
+  sim::ScanStream stream(world, sim::SimOptions{});
+  const Eigen::Affine3f T_base_sensor = stream.baseToSensor().cast<float>();
+  std::vector<double> stamps;
+  std::vector<std::shared_ptr<const PointCloud>> clouds;
+  std::vector<std::shared_ptr<const std::vector<float>>> times;
+  sim::SimScan scan;
+  for (int i = 0; i < 40 && stream.next(&scan); ++i) {
+    auto cloud = std::make_shared<PointCloud>();
+    pcl::transformPointCloud(sim::toPointCloud(scan), *cloud, T_base_sensor);
+    auto t = std::make_shared<std::vector<float>>();
+    for (const auto& p : scan.points) t->push_back(p.time);
+    stamps.push_back(scan.stamp);
+    clouds.push_back(cloud);
+    times.push_back(t);
+  }
+  ASSERT_EQ(stamps.size(), 40u);
+  LidarOdometry one_by_one(OdometryConfig{}), ahead(OdometryConfig{});
+  std::vector<PreparedScan> prepared =
+      std::async(std::launch::async, [&] {
+        std::vector<PreparedScan> out;
+        for (size_t i = 0; i < stamps.size(); ++i)
+          out.push_back(ahead.prepare(stamps[i], clouds[i], times[i]));
+        return out;
+      }).get();
+  int keyframes = 0;
+  for (size_t i = 0; i < stamps.size(); ++i) {
+    const OdometryResult a = one_by_one.process(stamps[i], *clouds[i], times[i].get());
+    const OdometryResult b = ahead.process(prepared[i]);
+    ASSERT_EQ(a.ok, b.ok) << "scan " << i;
+    EXPECT_TRUE(a.deskewed);
+    EXPECT_TRUE(a.T_odom_base.isApprox(b.T_odom_base, 0.0)) << "scan " << i;
+    ASSERT_EQ(a.is_keyframe, b.is_keyframe) << "scan " << i;
+    if (a.is_keyframe) {
+      ++keyframes;
+      ASSERT_EQ(a.keyframe_cloud->size(), b.keyframe_cloud->size());
+    }
+  }
+  EXPECT_GT(keyframes, 3);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -167,6 +168,28 @@ struct OdometryResult {
   double time_ms = 0.0;
 };
 
+/// A scan made ready for registration by what depends on no earlier scan
+/// (LidarOdometry::prepare): the instant it is registered at, its voxelised points with their
+/// times, and, when there is nothing to deskew, their covariances. Made on any thread, ahead of
+/// LidarOdometry::process.
+struct PreparedScan {
+  double stamp = 0.0;
+  double ref_s = 0.0;  // the instant registered, relative to the stamp (the sweep's middle), or 0
+  std::shared_ptr<const PointCloud> raw;  // the scan as given: keyframe clouds are made from it
+  std::shared_ptr<const std::vector<float>> raw_offsets;  // its point times (stamp-relative)
+  std::vector<float> mid_offsets;  // the point times relative to the instant, when ref_s != 0
+  bool has_times = false;          // the scan is deskewed (OdometryConfig::deskew, times given)
+  PointCloud reduced;              // preprocessed
+  std::vector<float> times;        // of the reduced points, when has_times
+  PreprocessStats stats;
+  GicpCloud::ConstPtr gicp;  // reduced with covariances (as measured: before any deskew)
+  double time_ms = 0.0;
+  /// The point times of the raw scan the registration uses (relative to the instant).
+  const std::vector<float>* offsets() const {
+    return ref_s != 0.0 ? &mid_offsets : raw_offsets.get();
+  }
+};
+
 class LidarOdometry {
  public:
   explicit LidarOdometry(const OdometryConfig& config);
@@ -181,6 +204,13 @@ class LidarOdometry {
   /// else sees it, and the keyframe cloud is the deskewed one.
   OdometryResult process(double stamp, const PointCloud& scan,
                          const std::vector<float>* point_offsets_s = nullptr);
+
+  /// process() in two steps: prepare() reads only the configuration, so a scan can be prepared
+  /// on another thread while earlier ones are registered; process(prepared) then gives what
+  /// process() gives. `scan` and `point_offsets_s` are kept (shared) for the keyframe cloud.
+  PreparedScan prepare(double stamp, std::shared_ptr<const PointCloud> scan,
+                       std::shared_ptr<const std::vector<float>> point_offsets_s) const;
+  OdometryResult process(const PreparedScan& scan);
 
   const OdometryConfig& config() const { return config_; }
   /// Pose of the last accepted scan.

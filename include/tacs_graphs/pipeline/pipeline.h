@@ -76,6 +76,12 @@ class Pipeline {
   ScanOdometry odometryOf(double stamp, const PointCloud& scan_in_base,
                           const std::vector<float>* point_offsets_s = nullptr);
   ScanOutcome takeOdometry(const ScanOdometry& scan);
+  /// odometryOf in two steps (LidarOdometry::prepare): prepareScan reads only the configuration
+  /// (and the given poses, set before the first scan), so scans can be prepared on a third thread
+  /// ahead of odometryOf(prepared), which gives what odometryOf gives.
+  PreparedScan prepareScan(double stamp, std::shared_ptr<const PointCloud> scan_in_base,
+                           std::shared_ptr<const std::vector<float>> point_offsets_s) const;
+  ScanOdometry odometryOf(const PreparedScan& scan);
 
   /// Takes the odometry from given poses (T_odom_base by stamp, e.g. a trajectory file of another
   /// odometry or the reference) instead of GICP: each scan gets the pose interpolated at its

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <type_traits>
 
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/timing.h"
@@ -410,14 +411,52 @@ double LidarOdometry::sweepReference(const PointCloud& scan, const std::vector<f
 
 OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
                                       const std::vector<float>* point_offsets_s) {
+  // Not owned: the scan and its times outlive this call.
+  const auto borrowed = [](const auto* p) {
+    using T = std::remove_pointer_t<decltype(p)>;
+    return p ? std::shared_ptr<T>(std::shared_ptr<T>(), p) : nullptr;
+  };
+  return process(prepare(stamp, borrowed(&scan), borrowed(point_offsets_s)));
+}
+
+PreparedScan LidarOdometry::prepare(double stamp, std::shared_ptr<const PointCloud> scan,
+                                    std::shared_ptr<const std::vector<float>> offsets) const {
+  Stopwatch watch;
+  PreparedScan p;
+  p.stamp = stamp;
+  p.raw = std::move(scan);
+  p.raw_offsets = std::move(offsets);
+  // The scan is registered at its sweep's middle (deskew_to_mid_sweep): ref_s is that instant
+  // and mid_offsets the point times relative to it.
+  p.ref_s = sweepReference(*p.raw, p.raw_offsets.get(), &p.mid_offsets);
+  // Preprocessed first, deskewed after (process): each voxel centroid keeps its returns' mean
+  // time, so a dense scan is deskewed (twice with deskew_refine) at the cost of its voxels, not
+  // its returns.
+  p.has_times = usableTimes(*p.raw, p.offsets());
+  p.reduced = preprocess(*p.raw, config_.preprocess, &p.stats, p.has_times ? p.offsets() : nullptr,
+                         &p.times);
+  // The covariances of the scan as measured; process() carries them into the deskewed scan
+  // (redeskewCovariances): within a point's few neighbours the motion is a rotation of the plane.
+  if (tooFewPoints(p.reduced.size(), p.stats).empty()) {
+    p.gicp = GicpCloud::build(p.reduced, config_.gicp.k_neighbors, config_.gicp.num_threads);
+  }
+  p.time_ms = watch.elapsedMs();
+  return p;
+}
+
+OdometryResult LidarOdometry::process(const PreparedScan& prepared) {
   Stopwatch watch;
   OdometryResult result;
+  const double stamp = prepared.stamp;
+  const PointCloud& scan = *prepared.raw;
   result.stamp = stamp;
   result.T_odom_base = stamp_pose_;
+  result.preprocess = prepared.stats;
   auto finish = [&](const std::string& error) {
     result.ok = error.empty();
     result.error = error;
-    result.time_ms = watch.elapsedMs();
+    // The scan's whole cost, wherever its preparation ran.
+    result.time_ms = prepared.time_ms + watch.elapsedMs();
     return result;
   };
   if (!std::isfinite(stamp)) return finish("non-finite stamp");
@@ -425,11 +464,8 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
     return finish(
         format("stamp %.6f is not after the previous scan's %.6f", stamp, last_scan_stamp_));
   }
-  // The scan is registered at its sweep's middle (deskew_to_mid_sweep): `t` is that instant and
-  // `offsets` the point times relative to it.
-  std::vector<float> mid_offsets;
-  const double ref_s = sweepReference(scan, point_offsets_s, &mid_offsets);
-  const std::vector<float>* offsets = ref_s != 0.0 ? &mid_offsets : point_offsets_s;
+  const double ref_s = prepared.ref_s;
+  const std::vector<float>* offsets = prepared.offsets();
   const double t = stamp + ref_s;
   bool reset = !initialized_;
   const Pose3 guess = initialized_ ? predict(t, &reset) : Pose3::Identity();
@@ -437,12 +473,9 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
   // Deskewed with the guessed motion; without a motion prior the scan stays as measured.
   BodyVelocity velocity;
   if (!reset) velocity = velocity_;
-  // Preprocessed first, deskewed after: each voxel centroid keeps its returns' mean time, so a
-  // dense scan is deskewed (twice with deskew_refine) at the cost of its voxels, not its returns.
-  const bool has_times = usableTimes(scan, offsets);
-  std::vector<float> times;
-  const PointCloud reduced = preprocess(scan, config_.preprocess, &result.preprocess,
-                                        has_times ? offsets : nullptr, &times);
+  const bool has_times = prepared.has_times;
+  const PointCloud& reduced = prepared.reduced;
+  const std::vector<float>& times = prepared.times;
   PointCloud::Ptr cloud(new PointCloud(
       compensate(reduced, has_times ? &times : nullptr, velocity, &result.deskewed)));
   // The preprocessed points' times, when the registration estimates the sweep's motion.
@@ -451,7 +484,9 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
   const std::string too_few = tooFewPoints(cloud->size(), result.preprocess);
   if (!too_few.empty()) return finish(too_few);
   GicpCloud::ConstPtr scan_gicp =
-      GicpCloud::build(*cloud, config_.gicp.k_neighbors, config_.gicp.num_threads);
+      !prepared.gicp ? GicpCloud::build(*cloud, config_.gicp.k_neighbors, config_.gicp.num_threads)
+      : result.deskewed ? redeskewed(*cloud, *prepared.gicp, times, BodyVelocity(), velocity)
+                        : prepared.gicp;
 
   if (!initialized_) {  // the first scan defines the odom frame
     startOn(t, cloud, scan_gicp, &result);
@@ -488,7 +523,7 @@ OdometryResult LidarOdometry::process(double stamp, const PointCloud& scan,
     // The dense keyframe cloud is deskewed to the stamp (with the step's velocity, as the pose)
     // when the scan was registered at its sweep's middle, else as the registered cloud was.
     if (ref_s != 0.0) {
-      attachKeyframeCloud(scan, point_offsets_s, velocity_, true, &result);
+      attachKeyframeCloud(scan, prepared.raw_offsets.get(), velocity_, true, &result);
     } else {
       attachKeyframeCloud(scan, result.deskewed ? offsets : nullptr, sweep_velocity, false,
                           &result);

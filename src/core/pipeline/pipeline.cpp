@@ -44,6 +44,25 @@ ScanOdometry Pipeline::odometryOf(double stamp, const PointCloud& scan_in_base,
   return scan;
 }
 
+PreparedScan Pipeline::prepareScan(
+    double stamp, std::shared_ptr<const PointCloud> scan_in_base,
+    std::shared_ptr<const std::vector<float>> point_offsets_s) const {
+  if (!given_poses_) {
+    return odometry_estimator_.prepare(stamp, std::move(scan_in_base), std::move(point_offsets_s));
+  }
+  PreparedScan scan;  // the given poses need the scan only
+  scan.stamp = stamp;
+  scan.raw = std::move(scan_in_base);
+  return scan;
+}
+
+ScanOdometry Pipeline::odometryOf(const PreparedScan& prepared) {
+  if (given_poses_) return odometryOf(prepared.stamp, *prepared.raw);
+  ScanOdometry scan;
+  scan.odometry = odometry_estimator_.process(prepared);
+  return scan;
+}
+
 ScanOutcome Pipeline::takeOdometry(const ScanOdometry& scan) {
   ScanOutcome outcome;
   ++stats_.scans;
