@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -68,18 +69,34 @@ inline std::string findWorldsDir() {
 
 /// World files to run: the --world arguments (names resolved in the worlds folder), else every
 /// .json of the worlds folder, sorted.
+/// A world that cannot be found ends the benchmark with a message saying so.
 inline std::vector<std::string> worldPaths(WorldsArgs* args) {
   namespace fs = std::filesystem;
   if (args->worlds_dir.empty()) args->worlds_dir = findWorldsDir();
+  const auto missing = [](const std::string& why) {
+    std::fprintf(stderr, "error: %s (give --worlds DIR, or a world's .json file)\n", why.c_str());
+    std::exit(2);
+  };
+  const std::string where = args->worlds_dir.empty()
+                                ? "no worlds/ folder above the working directory or the executable"
+                                : "not in " + args->worlds_dir;
   std::vector<std::string> paths;
   if (args->worlds.empty()) {
+    if (!fs::is_directory(args->worlds_dir)) missing(where);
     for (const auto& e : fs::directory_iterator(args->worlds_dir)) {
       if (e.path().extension() == ".json") paths.push_back(e.path().string());
     }
     std::sort(paths.begin(), paths.end());
   }
   for (const auto& w : args->worlds) {
-    paths.push_back(fs::exists(w) ? w : (fs::path(args->worlds_dir) / (w + ".json")).string());
+    if (fs::exists(w)) {
+      paths.push_back(w);
+    } else if (const fs::path named = fs::path(args->worlds_dir) / (w + ".json");
+               !args->worlds_dir.empty() && fs::exists(named)) {
+      paths.push_back(named.string());
+    } else {
+      missing("world " + w + ": no such file, and " + where);
+    }
   }
   return paths;
 }
