@@ -61,9 +61,10 @@ done
   echo "\`tacs_offline\`: from a bag \`tacs_sim\` wrote beforehand (a recording's cost), and"
   echo "simulated in-process (\`--world\`, the renderer then shares the cores). The worlds' LiDAR"
   echo "is a VLP-16 at 10 Hz (legged_office an OS1-64, motion distortion on), so x real time is"
-  echo "scans/s / 10. Odometry ms: mean per scan, on cores it shares with the keyframe stages (the"
-  echo "odometry runs ahead of them on a thread of its own). map.bt: seconds after the last scan,"
-  echo "and their share of the run plus that export. Made at $(git -C "$REPO" rev-parse --short HEAD)"
+  echo "scans/s / 10. Odometry ms: mean cost per scan, its preparation (on the thread that reads"
+  echo "the source) and its registration (on a thread of its own, ahead of the keyframe stages),"
+  echo "on cores they share with the keyframe stages. map.bt: seconds after the last scan, and"
+  echo "their share of the run plus that export. Made at $(git -C "$REPO" rev-parse --short HEAD)"
   echo "with \`bash scripts/throughput_results.sh\`."
   echo
   echo "| world | scans | bag: scans/s | x real time | odometry ms | map.bt s | map.bt share | --world: scans/s | x real time |"
