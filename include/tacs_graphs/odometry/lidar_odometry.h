@@ -170,8 +170,8 @@ struct OdometryResult {
 
 /// A scan made ready for registration by what depends on no earlier scan
 /// (LidarOdometry::prepare): the instant it is registered at, its voxelised points with their
-/// times, and, when there is nothing to deskew, their covariances. Made on any thread, ahead of
-/// LidarOdometry::process.
+/// times, and their covariances as measured (process() carries them into the deskewed scan).
+/// Made on any thread, ahead of LidarOdometry::process.
 struct PreparedScan {
   double stamp = 0.0;
   double ref_s = 0.0;  // the instant registered, relative to the stamp (the sweep's middle), or 0
