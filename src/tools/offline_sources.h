@@ -175,12 +175,11 @@ class OdometryAhead {
   }
 
  private:
-  // A message as read: a scan in the base frame prepared for the odometry
-  // (Pipeline::prepareScan), or why it is no usable scan.
+  // A message as read: its item with all but the position and the odometry, and a usable scan
+  // in the base frame prepared for the odometry (Pipeline::prepareScan).
   struct ReadScan {
-    std::string error;
-    std::string no_deskew, no_deskew_message;  // the scan's times were unusable
-    tacs::Pipeline* pipeline = nullptr;        // made on the first usable scan
+    ScanItem item;
+    tacs::Pipeline* pipeline = nullptr;  // made on the first usable scan
     tacs::PreparedScan prepared;
   };
 
@@ -199,7 +198,8 @@ class OdometryAhead {
       Eigen::Affine3f base_to_sensor = Eigen::Affine3f::Identity();
       SensorScan scan;
       while (source_.next(&scan)) {
-        ReadScan item;
+        ReadScan read;
+        ScanItem& item = read.item;
         item.error = scan.error;
         if (item.error.empty()) {
           if (!pipeline) {
@@ -214,12 +214,13 @@ class OdometryAhead {
             item.no_deskew = times.reason;
             item.no_deskew_message = times.message;
           }
-          item.pipeline = pipeline;
-          item.prepared = pipeline->prepareScan(
+          item.stamp = scan.stamp;
+          read.pipeline = pipeline;
+          read.prepared = pipeline->prepareScan(
               scan.stamp, std::move(in_base),
               times.ok ? std::make_shared<std::vector<float>>(std::move(times.offset_s)) : nullptr);
         }
-        if (!read_queue_.push(std::move(item))) return;  // the odometry thread stopped
+        if (!read_queue_.push(std::move(read))) return;  // the odometry thread stopped
       }
     } catch (...) {
       read_failure_ = std::current_exception();
@@ -232,15 +233,9 @@ class OdometryAhead {
       for (size_t k = 1;; ++k) {
         std::optional<ReadScan> read = read_queue_.pop();
         if (!read) break;
-        ScanItem item;
+        ScanItem& item = read->item;
         item.k = k;
-        item.error = read->error;
-        if (item.error.empty()) {
-          item.no_deskew = read->no_deskew;
-          item.no_deskew_message = read->no_deskew_message;
-          item.stamp = read->prepared.stamp;
-          item.odometry = read->pipeline->odometryOf(read->prepared);
-        }
+        if (item.error.empty()) item.odometry = read->pipeline->odometryOf(read->prepared);
         if (!queue_.push(std::move(item))) break;  // the caller stopped taking scans
       }
       read_queue_.close();  // the reader may wait on a full queue

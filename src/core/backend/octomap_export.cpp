@@ -117,13 +117,12 @@ struct RayDda {
   double t_max[3], t_delta[3];
   float length = 0.0f;
 
-  /// False when an end is off the map (nothing to walk), else `key` is the origin's leaf;
-  /// *empty when the ray starts and ends in one leaf (no leaf to walk).
+  /// True when there is a leaf to walk (`key`, the origin's): false when an end is off the map
+  /// or both ends lie in one leaf.
   bool start(const octomap::OcTree& tree, const octomap::point3d& origin,
-             const octomap::point3d& end, bool* empty) {
+             const octomap::point3d& end) {
     if (!tree.coordToKeyChecked(origin, key) || !tree.coordToKeyChecked(end, key_end)) return false;
-    *empty = key == key_end;
-    if (*empty) return true;
+    if (key == key_end) return false;
     octomap::point3d direction = end - origin;
     length = static_cast<float>(direction.norm());
     direction /= length;
@@ -347,8 +346,7 @@ void castRays(const octomap::OcTree& tree, const KeyframeView& keyframe,
       e = origin + (e - origin).normalized() * static_cast<float>(max_range);
     }
     RayDda ray;
-    bool empty = false;
-    if (!ray.start(tree, origin, e, &empty) || empty) continue;
+    if (!ray.start(tree, origin, e)) continue;
     visited->walk(
         ray, [&](const octomap::OcTreeKey& cell) { rays.crossed[partOf(cell)].push_back(cell); });
   }
