@@ -5,10 +5,9 @@
 // no wall's shape (WallMap::hasWallShape: too short, seen over, or in front of a taller wall), or
 // whose top stays far below the tallest walls' (a rack face seen only from its aisle is never
 // seen over), bounds a room only when it is anchored to the walls: one of its ends meets a wall, or
-// meets a plane anchored so (a half wall between two rooms, an office's partitions). Below 60 % of
-// the walls' top, a plane must also be seen from both sides to be anchored: the face of a cabinet
-// or a sideboard in a room's corner is seen from the room only. Free-standing furniture then bounds
-// nothing, and the free space between it joins the space around it.
+// meets a plane anchored so (a half wall between two rooms, an office's partitions, a cabinet in a
+// corner). Free-standing furniture then bounds nothing, and the free space between it joins the
+// space around it.
 #pragma once
 
 #include <cstdint>
@@ -23,16 +22,11 @@ namespace tacs {
 /// a wall's shape whose mean top is at most `top_margin` below the tallest such plane's (of those
 /// at least 4 m long, when there are some) and at least `top_min_share` of its height (1.6 m
 /// cubicle partitions under a 3 m ceiling are furniture, though only 1.5 m lower). An end within
-/// `anchor_distance` (xy) of an anchored plane's extent anchors a plane; one whose top is below
-/// 60 % of the walls' only when a face opposite to it lies at most `partition_max_thickness` behind
-/// it
-/// (<= 0: without that test). anchor_distance <= 0 returns every landmark (each plane may bound
-/// a room, as in the paper).
+/// `anchor_distance` (xy) of an anchored plane's extent anchors a plane. anchor_distance <= 0
+/// returns every landmark (each plane may bound a room, as in the paper).
 std::map<uint32_t, WallLandmark> roomBoundingPlanes(const WallMap& walls, double anchor_distance,
-                                                    double top_margin, double top_min_share,
-                                                    double partition_max_thickness);
-/// The same with rooms.extraction's anchor_distance_m, wall_top_margin_m, wall_top_min_share,
-/// partition_max_thickness_m.
+                                                    double top_margin, double top_min_share);
+/// The same with rooms.extraction's anchor_distance_m, wall_top_margin_m, wall_top_min_share.
 std::map<uint32_t, WallLandmark> roomBoundingPlanes(const WallMap& walls,
                                                     const RoomExtractionConfig& config);
 

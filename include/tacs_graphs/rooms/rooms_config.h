@@ -148,10 +148,6 @@ struct RoomExtractionConfig {
   /// Method "tacs": ... or whose top is below this share of the tallest wall's (the floor's
   /// ceiling height) [-].
   double wall_top_min_share = 0.75;
-  /// Method "tacs": a plane below 60 % of the walls' top is anchored only when its other face is
-  /// seen within this distance behind it (a partition, a half wall); the face of a cabinet or a
-  /// sideboard against a wall is seen from the room only. <= 0: without that test [m].
-  double partition_max_thickness = 0.4;
 
   template <class V>
   void visit(V& v) {
@@ -167,7 +163,6 @@ struct RoomExtractionConfig {
     v("anchor_distance_m", anchor_distance);
     v("wall_top_margin_m", wall_top_margin);
     v("wall_top_min_share", wall_top_min_share);
-    v("partition_max_thickness_m", partition_max_thickness);
   }
   void validate() const;
 };
