@@ -142,15 +142,44 @@ struct RayDda {
   }
   /// Steps `key` to the next leaf and returns the axis stepped, or -1 once the ray is done.
   int next() {
-    const int dim =
-        t_max[0] < t_max[1] ? (t_max[0] < t_max[2] ? 0 : 2) : (t_max[1] < t_max[2] ? 1 : 2);
-    key[dim] = static_cast<octomap::key_type>(key[dim] + step[dim]);
-    t_max[dim] += t_delta[dim];
+    const int dim = stepUnchecked();
     if (key == key_end) return -1;
     // Rounding can step past the end's leaf: stop once the ray is longer than the segment.
     if (std::min(std::min(t_max[0], t_max[1]), t_max[2]) > length) return -1;
     return dim;
   }
+  /// The steps from here that cannot end the ray: while the leaves' L1 distance to the end's is
+  /// at least 4, one axis is 2 leaves short of it, so the next crossing along it comes a leaf
+  /// before the segment's end and neither of next()'s stops can hold.
+  int stepsAhead() const {
+    int distance = 0;
+    for (int a = 0; a < 3; ++a) distance += std::abs(static_cast<int>(key_end[a]) - key[a]);
+    return std::max(0, distance - 4);
+  }
+  /// next() without its stops, for the steps stepsAhead() counts.
+  int stepUnchecked() {
+    const int dim =
+        t_max[0] < t_max[1] ? (t_max[0] < t_max[2] ? 0 : 2) : (t_max[1] < t_max[2] ? 1 : 2);
+    key[dim] = static_cast<octomap::key_type>(key[dim] + step[dim]);
+    t_max[dim] += t_delta[dim];
+    return dim;
+  }
+};
+
+// The parts of the map updated side by side: a leaf's is its brick's x, modulo kParts.
+constexpr int kParts = 2;
+int partOfBrick(int brick_x) { return brick_x % kParts; }
+int partOf(const octomap::OcTreeKey& k) { return partOfBrick(k[0] >> 3); }
+
+// A bit per leaf of a brick of 8 x 8 x 8 leaves (BrickDirectory::cell's order): one cache line.
+struct alignas(64) LeafBits {
+  std::array<uint64_t, 8> words{};
+};
+
+// A brick of the leaves a keyframe's rays cross: its first leaf and its bits.
+struct CrossedBrick {
+  octomap::OcTreeKey corner;
+  LeafBits bits;
 };
 
 // The leaves a keyframe has updated: a bit per leaf. A ray cell is kept only on its first visit,
@@ -214,44 +243,73 @@ class VisitedLeaves {
     return true;
   }
 
-  /// Calls on_new(key) for each leaf of the ray this keyframe has not visited yet. Inside the
-  /// cube the leaf's brick and bit follow the DDA's steps (a new brick every 8 steps along an
-  /// axis at most) instead of being found anew from the key at every leaf as visit() does.
-  template <class OnNew>
-  void walk(RayDda& ray, OnNew&& on_new) {
-    if (visit(ray.key)) on_new(ray.key);
+  /// Marks every leaf of the ray as visited by this keyframe. Inside the cube the leaf's brick
+  /// and bit follow the DDA's steps (a new brick every 8 steps along an axis at most) instead of
+  /// being found anew from the key at every leaf as visit() does, and the bits are the record:
+  /// drain() hands them over. A leaf outside the cube is passed to on_far(key) on its first
+  /// visit.
+  template <class OnFar>
+  void walk(RayDda& ray, OnFar&& on_far) {
     int local[3], brick[3];
     for (int a = 0; a < 3; ++a) {
       local[a] = static_cast<int>(ray.key[a]) - (corner_[a] << 3);
       brick[a] = local[a] >> 3;
     }
-    if (!inCube(brick)) return walkEach(ray, on_new);
+    if (!inCube(brick)) {
+      if (visit(ray.key)) on_far(ray.key);
+      return walkEach(ray, on_far);
+    }
     Bits* bits = enter(brick);
-    for (int dim; (dim = ray.next()) >= 0;) {
+    for (int ahead = ray.stepsAhead();;) {
+      const int c = (local[0] & 7) | ((local[1] & 7) << 3) | ((local[2] & 7) << 6);
+      bits->words[c >> 6] |= uint64_t{1} << (c & 63);
+      int dim;
+      if (ahead > 0) {
+        --ahead;
+        dim = ray.stepUnchecked();
+      } else if ((dim = ray.next()) < 0) {
+        return;
+      }
       const int step = ray.step[dim];
       local[dim] += step;
       if ((local[dim] & 7) == (step > 0 ? 0 : 7)) {  // into the next brick along `dim`
         brick[dim] += step;
         if (!inCube(brick)) {
-          if (visit(ray.key)) on_new(ray.key);
-          return walkEach(ray, on_new);
+          if (visit(ray.key)) on_far(ray.key);
+          return walkEach(ray, on_far);
         }
         bits = enter(brick);
       }
-      const int c = (local[0] & 7) | ((local[1] & 7) << 3) | ((local[2] & 7) << 6);
-      const uint64_t mask = uint64_t{1} << (c & 63);
-      uint64_t& word = bits->words[c >> 6];
-      if (!(word & mask)) {
-        word |= mask;
-        on_new(ray.key);
-      }
     }
+  }
+  /// Clears the bit of leaf k of the cube (a hit, which is no crossed leaf).
+  void unmark(const octomap::OcTreeKey& k) {
+    const int b[3] = {(k[0] >> 3) - corner_[0], (k[1] >> 3) - corner_[1], (k[2] >> 3) - corner_[2]};
+    if (!inCube(b)) return;
+    const int c = BrickDirectory<Bits>::cell(k);
+    near_[index(b)].words[c >> 6] &= ~(uint64_t{1} << (c & 63));
+  }
+  /// Appends the cube's bricks this keyframe visited to out[part of the brick], and clears them.
+  void drain(std::array<std::vector<CrossedBrick>, kParts>* out) {
+    for (uint32_t b : touched_) {
+      const int bx = static_cast<int>(b / (side_ * side_)),
+                by = static_cast<int>(b / side_ % side_), bz = static_cast<int>(b % side_);
+      const Bits& bits = near_[b];
+      if (std::any_of(bits.words.begin(), bits.words.end(), [](uint64_t w) { return w != 0; })) {
+        const octomap::OcTreeKey corner(static_cast<octomap::key_type>((corner_[0] + bx) << 3),
+                                        static_cast<octomap::key_type>((corner_[1] + by) << 3),
+                                        static_cast<octomap::key_type>((corner_[2] + bz) << 3));
+        (*out)[partOfBrick(corner_[0] + bx)].push_back({corner, bits});
+      }
+      near_[b] = Bits{};
+      used_[b] = 0;
+    }
+    touched_.clear();
+    last_ = nullptr;
   }
 
  private:
-  struct alignas(64) Bits {
-    std::array<uint64_t, 8> words{};
-  };
+  using Bits = LeafBits;
   struct FarBits {
     Bits bits;
     int epoch = -1;
@@ -261,9 +319,12 @@ class VisitedLeaves {
     return brick[0] >= 0 && brick[1] >= 0 && brick[2] >= 0 && brick[0] < side_ &&
            brick[1] < side_ && brick[2] < side_;
   }
+  uint32_t index(const int* brick) const {
+    return static_cast<uint32_t>((brick[0] * side_ + brick[1]) * side_ + brick[2]);
+  }
   // The bits of a brick of the cube, marked as used by this keyframe.
   Bits* enter(const int* brick) {
-    const uint32_t b = static_cast<uint32_t>((brick[0] * side_ + brick[1]) * side_ + brick[2]);
+    const uint32_t b = index(brick);
     if (!used_[b]) {
       used_[b] = 1;
       touched_.push_back(b);
@@ -272,10 +333,10 @@ class VisitedLeaves {
     return &near_[b];
   }
   // The rest of a ray, leaf by leaf through visit().
-  template <class OnNew>
-  void walkEach(RayDda& ray, OnNew&& on_new) {
+  template <class OnFar>
+  void walkEach(RayDda& ray, OnFar&& on_far) {
     while (ray.next() >= 0) {
-      if (visit(ray.key)) on_new(ray.key);
+      if (visit(ray.key)) on_far(ray.key);
     }
   }
 
@@ -292,12 +353,12 @@ class VisitedLeaves {
 };
 
 // One keyframe's share of map.bt: the leaves its points hit and the other leaves its rays cross,
-// each once; split by the part of the map a leaf belongs to (its brick's x, modulo kParts), so
-// the parts are updated side by side.
-constexpr int kParts = 2;
-int partOf(const octomap::OcTreeKey& k) { return (k[0] >> 3) % kParts; }
+// each once; split by the part of the map a leaf belongs to, so the parts are updated side by
+// side. The crossed leaves come as the bits of their bricks (near the keyframe, nearly all) or
+// one by one (those past VisitedLeaves' cube).
 struct KeyframeRays {
   std::array<std::vector<octomap::OcTreeKey>, kParts> hits;
+  std::array<std::vector<CrossedBrick>, kParts> crossed_bricks;
   std::array<std::vector<octomap::OcTreeKey>, kParts> crossed;
 };
 
@@ -312,6 +373,7 @@ void castRays(const octomap::OcTree& tree, const KeyframeView& keyframe,
   for (auto* lists : {&rays.hits, &rays.crossed}) {
     for (auto& list : *lists) list.clear();
   }
+  for (auto& list : rays.crossed_bricks) list.clear();
   PointCloud moved;
   pcl::transformPointCloud(*keyframe.cloud, moved, keyframe.pose.matrix().cast<float>());
   const Eigen::Vector3d& o = keyframe.origin;
@@ -350,6 +412,10 @@ void castRays(const octomap::OcTree& tree, const KeyframeView& keyframe,
     visited->walk(
         ray, [&](const octomap::OcTreeKey& cell) { rays.crossed[partOf(cell)].push_back(cell); });
   }
+  for (const auto& hits : rays.hits) {
+    for (const octomap::OcTreeKey& hit : hits) visited->unmark(hit);
+  }
+  visited->drain(&rays.crossed_bricks);
 }
 
 // A leaf of map.bt while it is built.
@@ -451,11 +517,24 @@ void writeOctomap(const std::string& path, const SceneGraph& graph, const Keyfra
         key_lo, key_hi,
         static_cast<int>(std::ceil(config.octomap_max_range_m / tree.getResolution())));
   }
+  const auto update = [&](LeafUpdate& leaf, float delta) {
+    leaf.log_odds = std::clamp(leaf.log_odds + delta, lo, hi);
+    leaf.touched = true;
+  };
   const auto apply = [&](const std::vector<octomap::OcTreeKey>& keys, float delta, int part) {
     for (const octomap::OcTreeKey& key : keys) {
-      LeafUpdate& leaf = leaves[part].at(key)[BrickDirectory<LeafBrick>::cell(key)];
-      leaf.log_odds = std::clamp(leaf.log_odds + delta, lo, hi);
-      leaf.touched = true;
+      update(leaves[part].at(key)[BrickDirectory<LeafBrick>::cell(key)], delta);
+    }
+  };
+  // A brick's crossed leaves, bit by bit, in one brick of the map.
+  const auto applyBricks = [&](const std::vector<CrossedBrick>& bricks, int part) {
+    for (const CrossedBrick& brick : bricks) {
+      LeafBrick& cells = leaves[part].at(brick.corner);
+      for (int w = 0; w < 8; ++w) {
+        for (uint64_t word = brick.bits.words[w]; word != 0; word &= word - 1) {
+          update(cells[w * 64 + __builtin_ctzll(word)], miss);
+        }
+      }
     }
   };
   const int n = static_cast<int>(keyframes.size());
@@ -472,7 +551,9 @@ void writeOctomap(const std::string& path, const SceneGraph& graph, const Keyfra
       }  // implicit barrier: the batch is cast
       for (int part = thread; part < kParts; part += threads) {
         for (int i = 0; i < count; ++i) {
+          // A keyframe's hit and crossed leaves are apart: the order among them is free.
           apply(batch[i].hits[part], hit, part);
+          applyBricks(batch[i].crossed_bricks[part], part);
           apply(batch[i].crossed[part], miss, part);
         }
       }
