@@ -132,6 +132,41 @@ TEST(RoomsMerging, FarAcrossOrDisjointOrPerpendicularStaysApart) {
   EXPECT_EQ(map.rooms().size(), 4u);
 }
 
+// A wall at y = `y` facing +y (sign 1) or -y (sign -1), along x in [-10, 16].
+WallLandmark yWall(uint32_t id, double y, int sign) {
+  WallLandmark w;
+  w.id = id;
+  w.normal = Eigen::Vector3d(0, sign, 0);
+  w.d = -sign * y;
+  w.endpoints[0] = {sign > 0 ? -10.0 : 16.0, y};
+  w.endpoints[1] = {sign > 0 ? 16.0 : -10.0, y};
+  return w;
+}
+
+TEST(RoomsMerging, PerpendicularStripsAroundATableCloseIntoOneRoom) {
+  // A 6 x 4.4 m meeting room whose table (x 1.5..4.5, y 1.5..3) splits its floor: the south
+  // strip pairs only the west and east walls, the west strip only the south and north walls.
+  const std::map<uint32_t, WallLandmark> walls = {
+      {1, xWall(1, 0.0, 1)}, {2, xWall(2, 6.0, -1)}, {3, yWall(3, 0.0, 1)}, {4, yWall(4, 4.4, -1)}};
+  RoomMap map;
+  const auto south = map.addObservation(yCorridor(0.2, 5.8, 0.2, 1.4, 1, 2), walls);
+  const auto west = map.addObservation(xCorridor(0.2, 1.4, 0.2, 4.2, 3, 4), walls);
+  EXPECT_FALSE(west.created);
+  EXPECT_EQ(west.room_id, south.room_id);
+  ASSERT_EQ(map.rooms().size(), 1u);
+  const RoomObservation& room = map.rooms().at(south.room_id).room;
+  EXPECT_EQ(room.kind, RoomKind::kRoom);
+  EXPECT_EQ(room.walls, (std::array<int, 4>{1, 2, 3, 4}));
+  // Corridors crossing at a junction reach beyond each other's walls: they stay apart.
+  RoomMap junction;
+  const std::map<uint32_t, WallLandmark> corridors = {{1, xWall(1, -0.4, 1)},
+                                                      {2, xWall(2, 2.4, -1)},
+                                                      {3, yWall(3, 3.6, 1)},
+                                                      {4, yWall(4, 6.4, -1)}};
+  junction.addObservation(yCorridor(0, 2, 0, 16, 1, 2), corridors);
+  EXPECT_TRUE(junction.addObservation(xCorridor(-5, 7, 4, 6, 3, 4), corridors).created);
+}
+
 TEST(RoomsMerging, NeighboursInARowSharingFrontAndBackWallsStayApart) {
   // Offices side by side share the corridor wall and the back wall (one landmark each, across
   // the doors). A partial view of the second office bounded by those two walls only must not

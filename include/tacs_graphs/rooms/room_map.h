@@ -8,15 +8,17 @@
 // wall between them) on every axis both define also merge without overlap (a long corridor or a
 // hall walked in separate pieces), and so does a view lying almost entirely inside a mapped room
 // (`nested_overlap`, a first partial view), or sharing `open_overlap` of it with no wall between
-// the centres (two legs of an L-shaped open floor). Otherwise perpendicular corridors, which share
-// no axis, never merge. Mapped rooms merge with each other by the same nesting rule when, after an
-// observation grew one of them, the smaller lies almost entirely inside the larger (both views
-// of one hall grew towards each other); the larger keeps its id. The mapped room takes over the
-// observation's free space and keyframes, adopts a wall pair it lacked (a corridor re-detected as a
-// four-wall room becomes a room), and every wall of the observation that differs from the mapped
-// room's wall of the same category but lies within max_axis_distance of its plane (two landmarks of
-// one wall) is returned as a wall-to-wall pair (eq. 4) for the backend; where the walls of a pair
-// are different walls, the view with more free space gives the room its walls.
+// the centres (two legs of an L-shaped open floor). Perpendicular corridors, which share no axis,
+// merge only when each lies within the other's wall pair (the strips of floor around a large
+// table: together a four-wall room); crossing corridors reach beyond each other's walls. Mapped
+// rooms merge with each other by the same nesting rule when, after an observation grew one of them,
+// the smaller lies almost entirely inside the larger (both views of one hall grew towards each
+// other); the larger keeps its id. The mapped room takes over the observation's free space and
+// keyframes, adopts a wall pair it lacked (a corridor re-detected as a four-wall room becomes a
+// room), and every wall of the observation that differs from the mapped room's wall of the same
+// category but lies within max_axis_distance of its plane (two landmarks of one wall) is returned
+// as a wall-to-wall pair (eq. 4) for the backend; where the walls of a pair are different walls,
+// the view with more free space gives the room its walls.
 //
 // Baseline merging (addByCenterDistance, S-Graphs+): the nearest mapped room within a fixed 2D
 // centre distance, whatever the free space; the room's region becomes the latest cluster.
@@ -121,6 +123,12 @@ class RoomMap {
   /// sharing open_overlap with no room-bounding plane between their centres.
   bool sameOpenSpace(double overlap, const RoomObservation& a, const RoomObservation& b,
                      const std::map<uint32_t, WallLandmark>& bounding) const;
+  /// Whether two corridor views on different axes close each other into one four-wall room:
+  /// touching, each within the other's wall pair, no room-bounding plane between their centres
+  /// (the strips of floor around a large table).
+  bool closesAround(double overlap, const RoomObservation& a, const RoomObservation& b,
+                    const std::map<uint32_t, WallLandmark>& landmarks,
+                    const std::map<uint32_t, WallLandmark>& bounding) const;
   RoomAssociation mergeOrCreate(MappedRoom* match, const RoomObservation& observation,
                                 bool union_free_space,
                                 const std::map<uint32_t, WallLandmark>& landmarks);

@@ -41,6 +41,22 @@ double shareWithinWalls(const RoomObservation& room, const std::vector<Eigen::Ve
   return static_cast<double>(inside) / pts.size();
 }
 
+// Two views sharing this share of the smaller one's cells touch [-].
+constexpr double kTouching = 0.05;
+
+// Two corridor views on different axes that touch, each lying within the other's wall pair, are
+// one four-wall room seen as two strips: the floor around a large table splits at it
+// (legged_office's meeting room). Corridors that cross or meet at a corner reach beyond each
+// other's walls.
+bool closeEachOther(const RoomObservation& a, const RoomObservation& b, double overlap,
+                    const std::map<uint32_t, WallLandmark>& landmarks) {
+  const bool crossed_axes = a.hasXPair() != b.hasXPair() && a.hasYPair() != b.hasYPair();
+  return a.kind == RoomKind::kCorridor && b.kind == RoomKind::kCorridor && crossed_axes &&
+         overlap >= kTouching &&
+         shareWithinWalls(a, b.free_space, landmarks) >= kMinEnclosedShare &&
+         shareWithinWalls(b, a.free_space, landmarks) >= kMinEnclosedShare;
+}
+
 int64_t cellKey(const Eigen::Vector3d& p, double cell) {
   const int64_t ix = static_cast<int64_t>(std::floor(p.x() / cell));
   const int64_t iy = static_cast<int64_t>(std::floor(p.y() / cell));
@@ -233,7 +249,6 @@ RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
       const auto same = [&](int c) { return a[c] == b[c] || (by_plane && sameWall(a[c], b[c])); };
       return same(lo) && same(hi);
     };
-    constexpr double kTouching = 0.05;  // share of the smaller view's cells [-]
     // Views that are not both corridors must bound each other on both axes to merge apart:
     // rooms in a row share their front and back walls (one landmark across the doors), so one
     // shared pair alone would join neighbours that never touch.
@@ -255,7 +270,8 @@ RoomAssociation RoomMap::addObservation(const RoomObservation& observation,
                              same_pair(0, 1, true) && same_pair(2, 3, true));
     // A view lying almost entirely inside the other is the same room whatever walls the
     // smaller one picked (a first, partial view of a room).
-    const bool nested = sameOpenSpace(overlap, m.room, observation, separating);
+    const bool nested = sameOpenSpace(overlap, m.room, observation, separating) ||
+                        closesAround(overlap, m.room, observation, landmarks, separating);
     const double score = same_walls && aligned ? std::max(overlap, 1.0) : overlap;
     const bool match = nested || (aligned && (overlap >= config_.min_overlap || same_walls));
     if (match && score > best_overlap) {
@@ -343,6 +359,13 @@ bool RoomMap::sameOpenSpace(double overlap, const RoomObservation& a, const Room
          !wallBetween(a.center.head<2>(), b.center.head<2>(), bounding);
 }
 
+bool RoomMap::closesAround(double overlap, const RoomObservation& a, const RoomObservation& b,
+                           const std::map<uint32_t, WallLandmark>& landmarks,
+                           const std::map<uint32_t, WallLandmark>& bounding) const {
+  return closeEachOther(a, b, overlap, landmarks) &&
+         !wallBetween(a.center.head<2>(), b.center.head<2>(), bounding);
+}
+
 bool RoomMap::spansSeparateRooms(const RoomObservation& observation,
                                  const std::map<uint32_t, WallLandmark>& landmarks) const {
   const auto obs_cells = cellsOf(observation.free_space);
@@ -372,9 +395,10 @@ void RoomMap::absorbNestedRooms(const std::map<uint32_t, WallLandmark>& landmark
     MappedRoom& grown = rooms_.at(out->room_id);
     for (auto& [id, other] : rooms_) {
       if (id == grown.id) continue;
-      if (other.cells.empty() || grown.cells.empty() ||
-          !sameOpenSpace(smallerShare(other.cells, grown.cells), other.room, grown.room,
-                         bounding)) {
+      if (other.cells.empty() || grown.cells.empty()) continue;
+      const double overlap = smallerShare(other.cells, grown.cells);
+      if (!sameOpenSpace(overlap, other.room, grown.room, bounding) &&
+          !closesAround(overlap, other.room, grown.room, landmarks, bounding)) {
         continue;
       }
       const bool other_smaller = other.cells.size() <= grown.cells.size();
