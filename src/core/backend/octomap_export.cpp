@@ -444,6 +444,43 @@ octomap::OcTreeNode* descend(octomap::OcTree* tree, octomap::OcTreeNode* node,
   return node;
 }
 
+// Creates the children of `node`, the block of side `side` leaves at cell (x, y, z) of a brick,
+// as OctoMap's pruning would leave them: a child block whose leaves are all touched alike is one
+// node of their value, one with none touched is absent, the others are filled the same way. The
+// leaves pruning would fold away are never made (on the warehouse, most of its free leaves).
+template <class Likeliest>
+void fillChildren(octomap::OcTree* tree, octomap::OcTreeNode* node, const LeafBrick& cells, int x,
+                  int y, int z, int side, const Likeliest& likeliest) {
+  const int half = side / 2;
+  for (int i = 0; i < 8; ++i) {  // OctoMap's child order: x in bit 0, y in bit 1, z in bit 2
+    const int cx = x + (i & 1) * half, cy = y + ((i >> 1) & 1) * half, cz = z + (i >> 2) * half;
+    bool any = false, uniform = true;
+    float value = 0.0f;
+    for (int dz = 0; dz < half; ++dz) {
+      for (int dy = 0; dy < half; ++dy) {
+        for (int dx = 0; dx < half; ++dx) {
+          const LeafUpdate& leaf = cells[(cx + dx) | ((cy + dy) << 3) | ((cz + dz) << 6)];
+          if (!leaf.touched) {
+            uniform = false;
+            continue;
+          }
+          const float v = likeliest(leaf);
+          if (!any) value = v;
+          uniform = uniform && v == value;
+          any = true;
+        }
+      }
+    }
+    if (!any) continue;
+    octomap::OcTreeNode* child = tree->createNodeChild(node, i);
+    if (uniform) {
+      child->setLogOdds(value);
+    } else {
+      fillChildren(tree, child, cells, cx, cy, cz, half, likeliest);
+    }
+  }
+}
+
 // Sets every touched leaf in `tree` (empty) to its maximum-likelihood value (the clamping bound
 // on its side of the occupancy threshold, what OctoMap's writeBinary stores), one descent per
 // brick: a brick whose 512 leaves are all touched alike becomes one node at its depth, the form
@@ -472,10 +509,15 @@ void writeInto(const BrickDirectory<LeafBrick>& leaves, octomap::OcTree* tree) {
                          likeliest(*touched), /*lazy_eval=*/true);
     }
     octomap::OcTreeNode* node = descend(tree, tree->getRoot(), corner, 0, depth - 3);
-    if (uniform && !tree->nodeHasChildren(node)) {
-      node->setLogOdds(first);
+    if (!tree->nodeHasChildren(node)) {
+      if (uniform) {
+        node->setLogOdds(first);
+      } else {
+        fillChildren(tree, node, *cells, 0, 0, 0, 8, likeliest);
+      }
       continue;
     }
+    // The brick of the first leaf, which made the root and the path to that leaf.
     for (int i = 0; i < 512; ++i) {
       const LeafUpdate& leaf = (*cells)[i];
       if (leaf.touched)
