@@ -216,11 +216,11 @@ class VisitedLeaves {
   }
   /// True the first time the current keyframe visits k.
   bool visit(const octomap::OcTreeKey& k) {
-    const int bx = (k[0] >> 3) - corner_[0], by = (k[1] >> 3) - corner_[1],
-              bz = (k[2] >> 3) - corner_[2];
+    const int brick[3] = {(k[0] >> 3) - corner_[0], (k[1] >> 3) - corner_[1],
+                          (k[2] >> 3) - corner_[2]};
     Bits* bits;
-    if (bx >= 0 && by >= 0 && bz >= 0 && bx < side_ && by < side_ && bz < side_) {
-      const uint32_t b = static_cast<uint32_t>((bx * side_ + by) * side_ + bz);
+    if (inCube(brick)) {
+      const uint32_t b = index(brick);
       bits = &near_[b];
       if (bits != last_) {
         if (!used_[b]) {

@@ -44,19 +44,6 @@ double shareWithinWalls(const RoomObservation& room, const std::vector<Eigen::Ve
 // Two views sharing this share of the smaller one's cells touch [-].
 constexpr double kTouching = 0.05;
 
-// Two corridor views on different axes that touch, each lying within the other's wall pair, are
-// one four-wall room seen as two strips: the floor around a large table splits at it
-// (legged_office's meeting room). Corridors that cross or meet at a corner reach beyond each
-// other's walls.
-bool closeEachOther(const RoomObservation& a, const RoomObservation& b, double overlap,
-                    const std::map<uint32_t, WallLandmark>& landmarks) {
-  const bool crossed_axes = a.hasXPair() != b.hasXPair() && a.hasYPair() != b.hasYPair();
-  return a.kind == RoomKind::kCorridor && b.kind == RoomKind::kCorridor && crossed_axes &&
-         overlap >= kTouching &&
-         shareWithinWalls(a, b.free_space, landmarks) >= kMinEnclosedShare &&
-         shareWithinWalls(b, a.free_space, landmarks) >= kMinEnclosedShare;
-}
-
 int64_t cellKey(const Eigen::Vector3d& p, double cell) {
   const int64_t ix = static_cast<int64_t>(std::floor(p.x() / cell));
   const int64_t iy = static_cast<int64_t>(std::floor(p.y() / cell));
@@ -359,10 +346,18 @@ bool RoomMap::sameOpenSpace(double overlap, const RoomObservation& a, const Room
          !wallBetween(a.center.head<2>(), b.center.head<2>(), bounding);
 }
 
+// Two corridor views on different axes that touch, each lying within the other's wall pair, are
+// one four-wall room seen as two strips: the floor around a large table splits at it
+// (legged_office's meeting room). Corridors that cross or meet at a corner reach beyond each
+// other's walls.
 bool RoomMap::closesAround(double overlap, const RoomObservation& a, const RoomObservation& b,
                            const std::map<uint32_t, WallLandmark>& landmarks,
                            const std::map<uint32_t, WallLandmark>& bounding) const {
-  return closeEachOther(a, b, overlap, landmarks) &&
+  const bool crossed_axes = a.hasXPair() != b.hasXPair() && a.hasYPair() != b.hasYPair();
+  return a.kind == RoomKind::kCorridor && b.kind == RoomKind::kCorridor && crossed_axes &&
+         overlap >= kTouching &&
+         shareWithinWalls(a, b.free_space, landmarks) >= kMinEnclosedShare &&
+         shareWithinWalls(b, a.free_space, landmarks) >= kMinEnclosedShare &&
          !wallBetween(a.center.head<2>(), b.center.head<2>(), bounding);
 }
 
