@@ -1,11 +1,15 @@
 // Every factor: zero residual at a consistent configuration, and the automatic-differentiation
-// Jacobian equal to central numeric differentiation of the same functor.
+// Jacobian equal to central numeric differentiation of the same functor. The analytic costs
+// (analytic_costs.h) against the functors they replace: the same residuals, and the same
+// Jacobians on the quaternion manifold's tangent space (the only part of an ambient quaternion
+// Jacobian that Ceres uses) at random poses, walls and information.
 #include <ceres/ceres.h>
 #include <gtest/gtest.h>
 
 #include <memory>
 #include <random>
 
+#include "tacs_graphs/backend/analytic_costs.h"
 #include "tacs_graphs/backend/factors.h"
 #include "tacs_graphs/common/types.h"
 
@@ -136,6 +140,118 @@ TEST(WallToWallFactor, WrapsAnglesAndJacobianMatchesNumeric) {
   EXPECT_NEAR(r[0], 1.0, 1e-9);  // 0.02 rad across the +-pi seam, not 2 pi
   EXPECT_NEAR(r[1], 2.0, 1e-9);
   expectJacobiansMatchNumeric<WallToWallFactor, 2, 2, 2>(new WallToWallFactor(f), {a, b});
+}
+
+struct TangentEvaluation {
+  std::vector<double> residuals;
+  std::vector<Eigen::MatrixXd> jacobians;  // per block; quaternion blocks on the tangent space
+};
+
+TangentEvaluation evaluateOnTangent(const ceres::CostFunction& cost,
+                                    const std::vector<double*>& params,
+                                    const std::vector<bool>& is_quaternion) {
+  const auto& sizes = cost.parameter_block_sizes();
+  const int rows = cost.num_residuals();
+  std::vector<std::vector<double>> raw(sizes.size());
+  std::vector<double*> ptrs;
+  for (size_t b = 0; b < sizes.size(); ++b) {
+    raw[b].resize(rows * sizes[b]);
+    ptrs.push_back(raw[b].data());
+  }
+  TangentEvaluation e;
+  e.residuals.resize(rows);
+  EXPECT_TRUE(cost.Evaluate(params.data(), e.residuals.data(), ptrs.data()));
+  const ceres::EigenQuaternionManifold manifold;
+  for (size_t b = 0; b < sizes.size(); ++b) {
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    const Eigen::MatrixXd ambient = Eigen::Map<const RowMajor>(raw[b].data(), rows, sizes[b]);
+    if (!is_quaternion[b]) {
+      e.jacobians.push_back(ambient);
+      continue;
+    }
+    Eigen::Matrix<double, 4, 3, Eigen::RowMajor> plus;
+    manifold.PlusJacobian(params[b], plus.data());
+    e.jacobians.push_back(ambient * plus);
+  }
+  return e;
+}
+
+void expectSame(const TangentEvaluation& analytic, const TangentEvaluation& autodiff) {
+  ASSERT_EQ(analytic.residuals.size(), autodiff.residuals.size());
+  for (size_t i = 0; i < analytic.residuals.size(); ++i)
+    EXPECT_NEAR(analytic.residuals[i], autodiff.residuals[i], 1e-12) << "residual " << i;
+  for (size_t b = 0; b < analytic.jacobians.size(); ++b) {
+    const double scale = std::max(1.0, autodiff.jacobians[b].cwiseAbs().maxCoeff());
+    EXPECT_LT((analytic.jacobians[b] - autodiff.jacobians[b]).cwiseAbs().maxCoeff(), 1e-9 * scale)
+        << "block " << b << "\nanalytic\n"
+        << analytic.jacobians[b] << "\nautodiff\n"
+        << autodiff.jacobians[b];
+  }
+}
+
+Pose3 randomPose(std::mt19937* rng, double extent) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Eigen::Quaterniond q =
+      Eigen::Quaterniond(Eigen::Vector4d(u(*rng), u(*rng), u(*rng), u(*rng))).normalized();
+  Pose3 T = Pose3::Identity();
+  T.linear() = q.toRotationMatrix();
+  T.translation() = extent * Eigen::Vector3d(u(*rng), u(*rng), u(*rng));
+  return T;
+}
+
+TEST(RelativePoseCost, MatchesTheAutodiffFactorAwayFromItsMeasurement) {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Pose3 a = randomPose(&rng, 20.0), b = randomPose(&rng, 20.0);
+    const Pose3 measured = randomPose(&rng, 3.0);
+    Eigen::Matrix<double, 6, 6> sqrt_info = Eigen::Matrix<double, 6, 6>::Random();
+    sqrt_info.diagonal().array() += 5.0;  // full, not diagonal, as an odometry edge's is
+    auto ta = trans(a), tb = trans(b);
+    auto qa = quat(a), qb = quat(b);
+    const std::vector<double*> params = {ta.data(), qa.data(), tb.data(), qb.data()};
+    const std::vector<bool> quaternions = {false, true, false, true};
+    const RelativePoseCost analytic(measured, sqrt_info);
+    const ceres::AutoDiffCostFunction<RelativePoseFactor, 6, 3, 4, 3, 4> autodiff(
+        new RelativePoseFactor(measured, sqrt_info));
+    expectSame(evaluateOnTangent(analytic, params, quaternions),
+               evaluateOnTangent(autodiff, params, quaternions));
+  }
+}
+
+TEST(WallObservationCost, MatchesTheAutodiffFactorAwayFromItsMeasurement) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Pose3 kf = randomPose(&rng, 20.0);
+    double wall[2] = {M_PI * u(rng), 10.0 * u(rng)};
+    const Eigen::Vector3d n_obs = Eigen::Vector3d(u(rng), u(rng), 0.2 * u(rng)).normalized();
+    const double d_obs = 5.0 * u(rng);
+    auto t = trans(kf);
+    auto q = quat(kf);
+    const std::vector<double*> params = {t.data(), q.data(), wall};
+    const std::vector<bool> quaternions = {false, true, false};
+    const WallObservationCost analytic(n_obs, d_obs, 0.05, 0.08);
+    const ceres::AutoDiffCostFunction<WallObservationFactor, 4, 3, 4, 2> autodiff(
+        new WallObservationFactor(n_obs, d_obs, 0.05, 0.08));
+    expectSame(evaluateOnTangent(analytic, params, quaternions),
+               evaluateOnTangent(autodiff, params, quaternions));
+  }
+}
+
+TEST(WallObservationCost, LeavesOutJacobiansCeresDoesNotAskFor) {
+  // A held keyframe's blocks are constant: Ceres passes null for their Jacobians.
+  const Pose3 kf = Pose3::Identity();
+  double wall[2] = {0.0, -2.0};
+  auto t = trans(kf);
+  auto q = quat(kf);
+  const double* params[] = {t.data(), q.data(), wall};
+  const WallObservationCost cost(Eigen::Vector3d::UnitX(), -2.5, 0.05, 0.05);
+  double residuals[4];
+  double wall_jacobian[8];
+  double* jacobians[] = {nullptr, nullptr, wall_jacobian};
+  ASSERT_TRUE(cost.Evaluate(params, residuals, jacobians));
+  EXPECT_NEAR(residuals[3], 10.0, 1e-12);      // 0.5 m at sigma 0.05
+  EXPECT_NEAR(wall_jacobian[7], 20.0, 1e-12);  // d residual_d / d d = 1 / sigma_d
 }
 
 }  // namespace

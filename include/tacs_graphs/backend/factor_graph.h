@@ -2,12 +2,15 @@
 // centres as Ceres parameter blocks; odometry, loop, keyframe-wall, room and wall-to-wall factors.
 // The problem is rebuilt from the stored measurements at every optimisation, so walls and rooms can
 // be merged or removed between optimisations without bookkeeping inside Ceres; a window solve
-// builds only the part around the newest keyframes, so its cost does not grow with the graph.
+// builds only the part around the newest keyframes, so its cost does not grow with the graph. The
+// cost functions of odometry, loop and keyframe-wall factors (nearly all residuals) are made once,
+// with their measurement, and lent to each problem.
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -17,6 +20,8 @@
 #include "tacs_graphs/common/types.h"
 
 namespace ceres {
+class CostFunction;
+class LossFunction;
 class Manifold;
 class Problem;
 }  // namespace ceres
@@ -107,6 +112,8 @@ struct WallPlane {
 class FactorGraph {
  public:
   using Matrix6d = Eigen::Matrix<double, 6, 6>;
+  /// The costs one optimisation makes and its problem borrows (room layer, anchor prior).
+  using SolveCosts = std::vector<std::unique_ptr<ceres::CostFunction>>;
   explicit FactorGraph(const BackendConfig& config);
 
   /// The first keyframe added anchors the map frame: its position and yaw are held, its roll and
@@ -163,10 +170,13 @@ class FactorGraph {
   void useKeyframe(ceres::Problem* problem, ceres::Manifold* quaternion, const Scope& scope,
                    uint32_t id);
   double* useWall(ceres::Problem* problem, const Scope& scope, uint32_t id);
-  void addKeyframeBlocks(ceres::Problem* problem, ceres::Manifold* quaternion, const Scope& scope);
+  void addKeyframeBlocks(ceres::Problem* problem, ceres::Manifold* quaternion, const Scope& scope,
+                         SolveCosts* costs);
   void addPoseAndWallFactors(ceres::Problem* problem, ceres::Manifold* quaternion,
-                             const Scope& scope);
-  void addRoomFactors(ceres::Problem* problem, const Scope& scope);
+                             const Scope& scope, ceres::LossFunction* loop_loss,
+                             ceres::LossFunction* wall_loss);
+  // Room-layer factors change with every room update: they are made per solve, kept in `costs`.
+  void addRoomFactors(ceres::Problem* problem, const Scope& scope, SolveCosts* costs);
 
   struct KeyframeState {
     std::array<double, 3> t;
@@ -174,14 +184,12 @@ class FactorGraph {
   };
   struct RelativePoseEdge {
     uint32_t from, to;
-    Pose3 T_from_to;
-    Matrix6d sqrt_information;
+    std::shared_ptr<ceres::CostFunction> cost;  // RelativePoseCost
     bool robust;
   };
   struct WallObservation {
     uint32_t keyframe, wall;
-    Eigen::Vector3d n_base;
-    double d_base;
+    std::shared_ptr<ceres::CostFunction> cost;  // WallObservationCost
   };
   struct Room {
     std::array<double, 2> center;
@@ -195,6 +203,8 @@ class FactorGraph {
   std::map<uint32_t, Room> rooms_;
   std::vector<RelativePoseEdge> pose_edges_;
   std::vector<WallObservation> wall_observations_;
+  // The oldest keyframe that saw each wall: a window solve holds the walls seen before it.
+  std::map<uint32_t, uint32_t> first_observer_;
   std::vector<std::pair<uint32_t, uint32_t>> wall_to_wall_;
   std::optional<uint32_t> anchor_keyframe_;
   Eigen::Quaterniond anchor_orientation_ = Eigen::Quaterniond::Identity();  // as first added

@@ -6,11 +6,21 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "tacs_graphs/backend/analytic_costs.h"
 #include "tacs_graphs/backend/factors.h"
 #include "tacs_graphs/common/config.h"
 #include "tacs_graphs/common/timing.h"
 
 namespace tacs {
+namespace {
+
+// A cost made for one solve: owned by `costs`, which outlives the problem that borrows it.
+ceres::CostFunction* keep(FactorGraph::SolveCosts* costs, ceres::CostFunction* cost) {
+  costs->emplace_back(cost);
+  return cost;
+}
+
+}  // namespace
 
 void BackendConfig::validate() const {
   for (const auto& [name, value] : {std::pair{"wall_sigma_normal", wall_sigma_normal},
@@ -69,7 +79,8 @@ void FactorGraph::addRelativePose(uint32_t from, uint32_t to, const Pose3& T_fro
   if (llt.info() != Eigen::Success) {
     throw std::invalid_argument("FactorGraph: information matrix is not positive definite");
   }
-  pose_edges_.push_back({from, to, T_from_to, llt.matrixU(), robust});
+  pose_edges_.push_back(
+      {from, to, std::make_shared<RelativePoseCost>(T_from_to, llt.matrixU()), robust});
 }
 
 void FactorGraph::addWall(uint32_t id, const WallPlane& plane) {
@@ -81,7 +92,12 @@ void FactorGraph::addWallObservation(uint32_t keyframe, uint32_t wall,
   if (!hasKeyframe(keyframe) || !hasWall(wall)) {
     throw std::invalid_argument("FactorGraph: wall observation of an unknown keyframe or wall");
   }
-  wall_observations_.push_back({keyframe, wall, n_base, d_base});
+  const auto [first, added] = first_observer_.emplace(wall, keyframe);
+  if (!added) first->second = std::min(first->second, keyframe);
+  wall_observations_.push_back(
+      {keyframe, wall,
+       std::make_shared<WallObservationCost>(n_base, d_base, config_.wall_sigma_normal,
+                                             config_.wall_sigma_d)});
 }
 
 void FactorGraph::mergeWalls(uint32_t kept, uint32_t removed) {
@@ -98,6 +114,12 @@ void FactorGraph::mergeWalls(uint32_t kept, uint32_t removed) {
       if (a == removed) a = kept;
       if (b == removed) b = kept;
     }
+  }
+  const auto gone = first_observer_.find(removed);
+  if (gone != first_observer_.end()) {
+    const auto [kept_first, added] = first_observer_.emplace(kept, gone->second);
+    if (!added) kept_first->second = std::min(kept_first->second, gone->second);
+    first_observer_.erase(gone);
   }
   walls_.erase(removed);
 }
@@ -128,8 +150,8 @@ FactorGraph::Scope FactorGraph::windowScope(size_t window_keyframes) const {
   auto it = keyframes_.end();
   std::advance(it, -static_cast<std::ptrdiff_t>(window_keyframes));
   scope.first_free_keyframe = it->first;
-  for (const auto& o : wall_observations_) {
-    if (!scope.freeKeyframe(o.keyframe)) scope.held_walls.insert(o.wall);
+  for (const auto& [wall, keyframe] : first_observer_) {
+    if (!scope.freeKeyframe(keyframe)) scope.held_walls.insert(wall);
   }
   return scope;
 }
@@ -156,7 +178,7 @@ double* FactorGraph::useWall(ceres::Problem* problem, const Scope& scope, uint32
 }
 
 void FactorGraph::addKeyframeBlocks(ceres::Problem* problem, ceres::Manifold* quaternion,
-                                    const Scope& scope) {
+                                    const Scope& scope, SolveCosts* costs) {
   for (const auto& [id, kf] : keyframes_) {
     if (scope.freeKeyframe(id)) useKeyframe(problem, quaternion, scope, id);
   }
@@ -166,8 +188,9 @@ void FactorGraph::addKeyframeBlocks(ceres::Problem* problem, ceres::Manifold* qu
   if (config_.anchor_tilt_sigma > 0.0) {
     // Yaw is the gauge: held by a prior far tighter than anything that could pull on it.
     constexpr double kYawSigma = 1e-6;
-    auto* cost = new ceres::AutoDiffCostFunction<AnchorOrientationFactor, 3, 4>(
-        new AnchorOrientationFactor(anchor_orientation_, config_.anchor_tilt_sigma, kYawSigma));
+    auto* cost = keep(costs, new ceres::AutoDiffCostFunction<AnchorOrientationFactor, 3, 4>(
+                                 new AnchorOrientationFactor(
+                                     anchor_orientation_, config_.anchor_tilt_sigma, kYawSigma)));
     problem->AddResidualBlock(cost, nullptr, anchor.q.data());
   } else {
     problem->SetParameterBlockConstant(anchor.q.data());
@@ -175,30 +198,26 @@ void FactorGraph::addKeyframeBlocks(ceres::Problem* problem, ceres::Manifold* qu
 }
 
 void FactorGraph::addPoseAndWallFactors(ceres::Problem* problem, ceres::Manifold* quaternion,
-                                        const Scope& scope) {
+                                        const Scope& scope, ceres::LossFunction* loop_loss,
+                                        ceres::LossFunction* wall_loss) {
   for (const auto& e : pose_edges_) {
     if (!scope.freeKeyframe(e.from) && !scope.freeKeyframe(e.to)) continue;
     useKeyframe(problem, quaternion, scope, e.from);
     useKeyframe(problem, quaternion, scope, e.to);
     auto& a = keyframes_.at(e.from);
     auto& b = keyframes_.at(e.to);
-    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseFactor, 6, 3, 4, 3, 4>(
-        new RelativePoseFactor(e.T_from_to, e.sqrt_information));
-    ceres::LossFunction* loss = e.robust ? new ceres::HuberLoss(config_.loop_huber) : nullptr;
-    problem->AddResidualBlock(cost, loss, a.t.data(), a.q.data(), b.t.data(), b.q.data());
+    problem->AddResidualBlock(e.cost.get(), e.robust ? loop_loss : nullptr, a.t.data(), a.q.data(),
+                              b.t.data(), b.q.data());
   }
   for (const auto& o : wall_observations_) {
     if (!scope.freeKeyframe(o.keyframe)) continue;
     auto& kf = keyframes_.at(o.keyframe);
-    auto* cost = new ceres::AutoDiffCostFunction<WallObservationFactor, 4, 3, 4, 2>(
-        new WallObservationFactor(o.n_base, o.d_base, config_.wall_sigma_normal,
-                                  config_.wall_sigma_d));
-    problem->AddResidualBlock(cost, new ceres::HuberLoss(config_.wall_huber), kf.t.data(),
-                              kf.q.data(), useWall(problem, scope, o.wall));
+    problem->AddResidualBlock(o.cost.get(), wall_loss, kf.t.data(), kf.q.data(),
+                              useWall(problem, scope, o.wall));
   }
 }
 
-void FactorGraph::addRoomFactors(ceres::Problem* problem, const Scope& scope) {
+void FactorGraph::addRoomFactors(ceres::Problem* problem, const Scope& scope, SolveCosts* costs) {
   const auto touchesFree = [&](const Room& room) {
     for (const auto& [a, b] : room.wall_pairs) {
       if (scope.freeWall(a) || scope.freeWall(b)) return true;
@@ -209,14 +228,16 @@ void FactorGraph::addRoomFactors(ceres::Problem* problem, const Scope& scope) {
     if (!touchesFree(room)) continue;  // all its walls held: the room stays where it is
     for (const auto& [a, b] : room.wall_pairs) {
       if (a == b) continue;  // both sides merged into one wall: no constraint left
-      auto* cost = new ceres::AutoDiffCostFunction<RoomPairFactor, 1, 2, 2, 2>(
-          new RoomPairFactor(config_.room_sigma));
+      auto* cost = keep(costs, new ceres::AutoDiffCostFunction<RoomPairFactor, 1, 2, 2, 2>(
+                                   new RoomPairFactor(config_.room_sigma)));
       problem->AddResidualBlock(cost, nullptr, room.center.data(), useWall(problem, scope, a),
                                 useWall(problem, scope, b));
     }
     if (room.corridor_anchor && !room.wall_pairs.empty()) {
-      auto* cost = new ceres::AutoDiffCostFunction<CorridorAnchorFactor, 1, 2, 2>(
-          new CorridorAnchorFactor(*room.corridor_anchor, config_.corridor_anchor_sigma));
+      auto* cost =
+          keep(costs,
+               new ceres::AutoDiffCostFunction<CorridorAnchorFactor, 1, 2, 2>(
+                   new CorridorAnchorFactor(*room.corridor_anchor, config_.corridor_anchor_sigma)));
       problem->AddResidualBlock(cost, nullptr, room.center.data(),
                                 useWall(problem, scope, room.wall_pairs.front().first));
     }
@@ -224,8 +245,9 @@ void FactorGraph::addRoomFactors(ceres::Problem* problem, const Scope& scope) {
   }
   for (const auto& [a, b] : wall_to_wall_) {
     if (a == b || (!scope.freeWall(a) && !scope.freeWall(b))) continue;
-    auto* cost = new ceres::AutoDiffCostFunction<WallToWallFactor, 2, 2, 2>(
-        new WallToWallFactor(config_.wall_merge_sigma_theta, config_.wall_merge_sigma_d));
+    auto* cost =
+        keep(costs, new ceres::AutoDiffCostFunction<WallToWallFactor, 2, 2, 2>(new WallToWallFactor(
+                        config_.wall_merge_sigma_theta, config_.wall_merge_sigma_d)));
     problem->AddResidualBlock(cost, nullptr, useWall(problem, scope, a),
                               useWall(problem, scope, b));
   }
@@ -236,13 +258,19 @@ OptimizationReport FactorGraph::optimize(size_t window_keyframes) {
   Stopwatch watch;
   const Scope scope = windowScope(window_keyframes);
   report.window = !scope.whole;
+  // The problem borrows everything: the stored costs, and what this solve makes (declared first,
+  // so it outlives the problem).
+  SolveCosts costs;
+  ceres::EigenQuaternionManifold quaternion_manifold;
+  ceres::HuberLoss loop_loss(config_.loop_huber), wall_loss(config_.wall_huber);
   ceres::Problem::Options problem_options;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
-  ceres::EigenQuaternionManifold quaternion_manifold;
-  addKeyframeBlocks(&problem, &quaternion_manifold, scope);
-  addPoseAndWallFactors(&problem, &quaternion_manifold, scope);
-  addRoomFactors(&problem, scope);
+  addKeyframeBlocks(&problem, &quaternion_manifold, scope, &costs);
+  addPoseAndWallFactors(&problem, &quaternion_manifold, scope, &loop_loss, &wall_loss);
+  addRoomFactors(&problem, scope, &costs);
   report.residual_blocks = static_cast<size_t>(problem.NumResidualBlocks());
   if (report.residual_blocks == 0) {
     report.usable = true;
