@@ -58,7 +58,7 @@ struct BackendConfig {
   // since the last one reach full_solve_fraction of the graph, so the cost per keyframe stays
   // bounded as the graph grows.
   int window_keyframes = 30;
-  double full_solve_fraction = 0.1;
+  double full_solve_fraction = 0.25;
   // Roll and pitch of the first keyframe, which anchors the map: 0 holds them as measured; > 0
   // lets the vertical walls level the map within this prior [rad].
   double anchor_tilt_sigma = 0.05;
