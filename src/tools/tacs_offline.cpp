@@ -308,8 +308,8 @@ int run(const Options& o) {
             << walls << " walls (+" << graph.walls.size() - walls << " other planes), "
             << graph.rooms.size() << " rooms, " << wall_s << " s ("
             << (wall_s > 0 ? stats.scans / wall_s : 0.0) << " scans/s), t_FGO "
-            << pipeline.fgoSeconds() << " s, loops " << graph.loops.size() << ", t_LD "
-            << pipeline.ldSeconds() << " s -> " << o.out << "\n";
+            << pipeline.fgoSeconds() << " s (CPU " << pipeline.fgoCpuSeconds() << " s), loops "
+            << graph.loops.size() << ", t_LD " << pipeline.ldSeconds() << " s -> " << o.out << "\n";
   std::cout << "[tacs_offline] run folder written in" << std::setprecision(1);
   for (const auto& [name, ms] : export_ms) std::cout << " " << name << " " << ms / 1e3 << " s";
   std::cout << "\n";

@@ -75,6 +75,8 @@ class Backend {
   const WallMap& wallMap() const { return wall_map_; }
   /// Total optimisation time so far (t_FGO) and the number of optimisations.
   double totalOptimizationMs() const { return total_optimization_ms_; }
+  /// Its CPU time: t_FGO less the time the backend waited for a core.
+  double totalOptimizationCpuMs() const { return total_optimization_cpu_ms_; }
   int optimizations() const { return optimizations_; }
 
  private:
@@ -100,6 +102,7 @@ class Backend {
   size_t keyframes_since_full_solve_ = 0;
   bool loop_pending_ = false;
   double total_optimization_ms_ = 0.0;
+  double total_optimization_cpu_ms_ = 0.0;
   int optimizations_ = 0;
 };
 

@@ -89,7 +89,8 @@ struct OptimizationReport {
   int iterations = 0;
   double initial_cost = 0.0;
   double final_cost = 0.0;
-  double time_ms = 0.0;
+  double time_ms = 0.0;  // wall time
+  double cpu_ms = 0.0;   // CPU time of the optimising thread (time_ms less waiting for a core)
   size_t residual_blocks = 0;
   bool window = false;  // a window solve (BackendConfig::window_keyframes), not a full one
 };

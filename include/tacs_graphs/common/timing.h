@@ -1,4 +1,5 @@
-// Wall-clock timing for per-stage statistics (timing.json, benchmarks).
+// Wall-clock timing for per-stage statistics (timing.json, benchmarks), and the CPU time of the
+// calling thread where waiting for a core must not count (t_FGO on a loaded machine).
 #pragma once
 
 #include <chrono>
@@ -19,6 +20,18 @@ class Stopwatch {
  private:
   using Clock = std::chrono::steady_clock;
   Clock::time_point start_;
+};
+
+/// Measures the CPU time the calling thread used since construction: unlike Stopwatch, time the
+/// thread spent waiting for a core (other threads, other processes) does not count.
+class ThreadCpuStopwatch {
+ public:
+  ThreadCpuStopwatch() : start_ms_(nowMs()) {}
+  double elapsedMs() const { return nowMs() - start_ms_; }
+
+ private:
+  static double nowMs();
+  double start_ms_;
 };
 
 /// Accumulated time and call count per named stage.

@@ -104,8 +104,10 @@ class Pipeline {
   /// The sensor's position in the base frame: where the keyframe clouds' rays start.
   const Eigen::Vector3d& sensorInBase() const { return sensor_in_base_; }
   const StageTimes& stageTimes() const { return stage_times_; }
-  /// Total backend optimisation time (t_FGO) and loop-detection time (t_LD) in seconds.
+  /// Total backend optimisation time (t_FGO; wall, and the CPU time of its thread) and
+  /// loop-detection time (t_LD) in seconds.
   double fgoSeconds() const { return backend().totalOptimizationMs() / 1e3; }
+  double fgoCpuSeconds() const { return backend().totalOptimizationCpuMs() / 1e3; }
   double ldSeconds() const { return loops_.detector().stats().total_ms / 1e3; }
   const LoopDetector& loopDetector() const { return loops_.detector(); }
   const TraversableMap& traversableMap() const { return rooms_.traversableMap(); }

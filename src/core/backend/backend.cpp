@@ -68,6 +68,7 @@ OptimizationReport Backend::optimize() { return run(0); }
 OptimizationReport Backend::run(size_t window_keyframes) {
   const OptimizationReport report = graph_.optimize(window_keyframes);
   total_optimization_ms_ += report.time_ms;
+  total_optimization_cpu_ms_ += report.cpu_ms;
   ++optimizations_;
   keyframes_since_optimization_ = 0;
   if (!report.window) keyframes_since_full_solve_ = 0;

@@ -32,6 +32,7 @@ nlohmann::json timingJson(const Pipeline& pipeline, const RunInfo& info) {
   }
   j["stages_ms"] = stages;
   j["t_fgo_s"] = pipeline.fgoSeconds();
+  j["t_fgo_cpu_s"] = pipeline.fgoCpuSeconds();
   j["t_ld_s"] = pipeline.ldSeconds();
   const LoopDetectorStats& lcd = pipeline.loopDetector().stats();
   j["loop_detection"] = {{"detections", lcd.detections},
